@@ -1,0 +1,283 @@
+// geometry.cpp -- where rays meet shapes, and nothing else.
+//
+// The assignment handout's sphere (a quadratic) and triangle (Cramer's rule, variables A..M),
+// the second handout's nearest hit over a list of shapes, and a safe origin for rays that leave
+// a surface. The defaults are the numerically robust forms (Ray Tracing Gems ch. 7 for spheres,
+// Woop, Benthin & Wald 2013 for triangles, pbrt-v4 §6.8 for error bounds); the handout's Cramer
+// form stays selectable for teaching. Compiled with -ffp-contract=off: see the Makefile.
+#include "ray.h"
+
+#include <cassert>
+
+// Writes the fields every shape fills the same way; `outwardNormal` must be unit length.
+// The normal is turned to face the incoming ray, and frontFace records which side it came from;
+// a ray that grazes the surface (d.N = 0, a tangent) counts as arriving from outside.
+static void SetFaceNormal(const Ray *ray, vec3 outwardNormal, RayHit *hit) {
+    hit->frontFace = !(Dot(ray->dir, outwardNormal) > 0);
+    hit->normal = hit->frontFace ? outwardNormal : -outwardNormal;
+}
+
+// Solve |o + t d - c|^2 = r^2. With f = o - c this is a t^2 + 2 b t + c0 = 0, where
+// a = d.d, b = f.d, c0 = f.f - r^2 (RTIOW v4 §6.2 uses the same half-b form).
+// Two fixes from Ray Tracing Gems ch. 7 (Haines et al. 2019), because the textbook form fails
+// for small spheres far away and for the near root:
+//   discriminant b^2 - a c0 = a (r^2 - |f - (b/a) d|^2): measure how far the line passes from
+//     the centre instead of subtracting two huge nearly equal numbers (Hearn & Baker);
+//   roots q = -(b + sign(b) sqrt(disc)), t0 = c0 / q, t1 = q / a: never subtract nearly equal
+//     numbers (Press et al., Numerical Recipes §5.6).
+// Returns the nearest root in (tMin, tMax) that is also provably positive (see below).
+bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
+    vec3 d = ray->dir;
+    vec3 f = ray->origin - s->center;
+    real a = Dot(d, d);
+    assert(a > 0 && "ray direction must not be zero");
+    real b = Dot(f, d);
+    real r2 = s->radius * s->radius;
+
+    // Reject if the line passes farther from the centre than the radius (NaN input lands here)
+    vec3 offLine = f - (b / a) * d;
+    real disc = a * (r2 - Dot(offLine, offLine));
+    if (!(disc >= 0))
+        return false;
+
+    // Both roots without cancellation
+    real c0 = Dot(f, f) - r2;
+    real q = -(b + std::copysign(std::sqrt(disc), b));
+    if (q == 0) // the ray starts on the surface and is tangent to it
+        return false;
+    real t0 = c0 / q, t1 = q / a;
+    if (t0 > t1)
+        std::swap(t0, t1);
+
+    // A root smaller than the rounding error of c0 / q is indistinguishable from t = 0: the ray
+    // starts on this sphere. c0 carries at most 7 roundings of terms no larger than f.f + r^2
+    // (pbrt-v4 §6.8.3 bounds roots the same way, with interval arithmetic).
+    real tError = Gamma(7) * (Dot(f, f) + r2) / std::fabs(q);
+
+    // Pick the nearest root inside (tMin, tMax)
+    real t = t0;
+    if (!(t > tMin && t > tError)) {
+        t = t1;
+        if (!(t > tMin && t > tError))
+            return false;
+    }
+    if (!(t < tMax))
+        return false;
+
+    // Put the hit point back on the sphere: this removes the error along the normal that
+    // o + t d carries (pbrt-v4 §6.8.5); what remains is a few roundings of its coordinates.
+    vec3 local = f + t * d;
+    local = (s->radius / Length(local)) * local;
+    hit->t = t;
+    hit->point = s->center + local;
+    hit->pointError = Gamma(5) * Abs(local) + Gamma(1) * Abs(hit->point);
+    SetFaceNormal(ray, (1 / s->radius) * local, hit);
+    hit->material = s->material;
+    hit->shape = SHAPE_SPHERE;
+    return true;
+}
+
+// a.x * b.y - a.y * b.x with the correct sign, also when the plain product difference rounds to
+// 0. In float the products are exact in double. In double, Kahan's difference of products with
+// fused multiply-adds is within 2 ulp of the exact value (Jeannerod, Louvet & Muller, Math.
+// Comp. 2013), so its sign, and whether it is 0, are exact.
+static real ExactEdgeFunction(real ax, real ay, real bx, real by) {
+#ifdef RT_FLOAT
+    return (real)((double)ax * (double)by - (double)ay * (double)bx);
+#else
+    real product = ay * bx;
+    real productError = std::fma(-ay, bx, product);
+    return std::fma(ax, by, -product) + productError;
+#endif
+}
+
+// Fills the hit record of a triangle hit at ray parameter t with barycentric coordinates
+// (b0, b1, b2) of the corners a, b, c. The point is the barycentric combination, not o + t d:
+// it lies on the triangle within gamma(7) sum |b_i p_i| per axis (pbrt-v4 §6.8.5).
+static void SetTriangleHit(const Triangle *tri, const Ray *ray, real t, real b0, real b1, real b2,
+                           RayHit *hit) {
+    vec3 p0 = b0 * tri->a, p1 = b1 * tri->b, p2 = b2 * tri->c;
+    hit->t = t;
+    hit->point = p0 + p1 + p2;
+    hit->pointError = Gamma(7) * (Abs(p0) + Abs(p1) + Abs(p2));
+    SetFaceNormal(ray, Normalize(Cross(tri->b - tri->a, tri->c - tri->a)), hit);
+    hit->material = tri->material;
+    hit->shape = SHAPE_TRIANGLE;
+}
+
+// Return no intersection if the triangle is degenerate (zero area): it has no normal.
+static bool IsDegenerate(const Triangle *tri) {
+    vec3 n = Cross(tri->b - tri->a, tri->c - tri->a);
+    return !(Dot(n, n) > 0) || !IsFinite(n);
+}
+
+// Watertight ray/triangle intersection (Woop, Benthin & Wald, "Watertight Ray/Triangle
+// Intersection", JCGT 2(1), 2013). Move the ray origin to 0, rename the axes so the ray runs
+// along +z, shear it onto the z axis; the ray then hits the triangle iff the 2D edge functions
+//   U = Cx By - Cy Bx,  V = Ax Cy - Ay Cx,  W = Bx Ay - By Ax
+// of the sheared corners agree in sign, and t = (U Az + V Bz + W Cz) / (U + V + W).
+// Why watertight: a corner shared by two triangles is transformed to the same numbers in both,
+// so a shared edge's function is the same number with the opposite sign, and the one case in
+// which rounding can lie, a value of exactly 0, is recomputed exactly. No epsilon anywhere.
+bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit) {
+    vec3 d = ray->dir;
+
+    // Rename the axes: kz is the largest |d| component; swap kx, ky if d[kz] < 0 to keep the
+    // winding of the triangle as seen by the ray
+    vec3 ad = Abs(d);
+    int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    real dz = Component(d, kz);
+    assert(dz != 0 && "ray direction must not be zero");
+    if (dz < 0)
+        std::swap(kx, ky);
+    real sx = Component(d, kx) / dz, sy = Component(d, ky) / dz, sz = 1 / dz;
+
+    // Translate the corners to the ray origin and shear them so the ray is the +z axis
+    vec3 A = tri->a - ray->origin, B = tri->b - ray->origin, C = tri->c - ray->origin;
+    real ax = Component(A, kx) - sx * Component(A, kz),
+         ay = Component(A, ky) - sy * Component(A, kz);
+    real bx = Component(B, kx) - sx * Component(B, kz),
+         by = Component(B, ky) - sy * Component(B, kz);
+    real cx = Component(C, kx) - sx * Component(C, kz),
+         cy = Component(C, ky) - sy * Component(C, kz);
+
+    // The 2D edge functions; recompute exactly any that rounded to 0
+    real u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
+    if (u == 0 || v == 0 || w == 0) {
+        u = ExactEdgeFunction(cx, cy, bx, by);
+        v = ExactEdgeFunction(ax, ay, cx, cy);
+        w = ExactEdgeFunction(bx, by, ax, ay);
+    }
+
+    // Reject if the signs differ (the ray passes outside an edge) or the ray is in the plane
+    if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0))
+        return false;
+    real det = u + v + w;
+    if (det == 0 || !std::isfinite(det))
+        return false;
+
+    // The distance along the ray: t = (U Az + V Bz + W Cz) / det, with z scaled by 1 / d[kz]
+    real az = sz * Component(A, kz), bz = sz * Component(B, kz), cz = sz * Component(C, kz);
+    real t = (u * az + v * bz + w * cz) / det;
+    if (!(t > tMin && t < tMax))
+        return false;
+
+    // Reject a t within its own rounding error of 0: the ray starts on this triangle. The bound
+    // follows the error analysis of each step above (pbrt-v4 §6.8.4, "conservative ray-triangle
+    // t"): errors of the sheared x, y, z, then of the edge functions, then of the sum.
+    real maxX = std::fmax(std::fabs(ax), std::fmax(std::fabs(bx), std::fabs(cx)));
+    real maxY = std::fmax(std::fabs(ay), std::fmax(std::fabs(by), std::fabs(cy)));
+    real maxZ = std::fmax(std::fabs(az), std::fmax(std::fabs(bz), std::fabs(cz)));
+    real maxE = std::fmax(std::fabs(u), std::fmax(std::fabs(v), std::fabs(w)));
+    real errX = Gamma(5) * (maxX + maxZ), errY = Gamma(5) * (maxY + maxZ), errZ = Gamma(3) * maxZ;
+    real errE = 2 * (Gamma(2) * maxX * maxY + errY * maxX + errX * maxY);
+    real errT = 3 * (Gamma(3) * maxE * maxZ + errE * maxZ + errZ * maxE) / std::fabs(det);
+    if (!(t > errT))
+        return false;
+
+    if (IsDegenerate(tri))
+        return false;
+    SetTriangleHit(tri, ray, t, u / det, v / det, w / det, hit);
+    return true;
+}
+
+// The handout's triangle test: solve a + beta (b - a) + gamma (c - a) = e + t d by Cramer's
+// rule, with the variables A..M of the slide (Shirley & Marschner, Fundamentals of Computer
+// Graphics, §4.4.2). Kept for teaching and for the benchmark: it is not watertight, because each
+// triangle rounds its shared edges differently, so rays through an edge can slip between two
+// triangles (see the README's robustness section).
+bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
+                             RayHit *hit) {
+    vec3 a = tri->a, b = tri->b, c = tri->c, e = ray->origin, d = ray->dir;
+    real A = a.x - b.x, B = a.y - b.y, C = a.z - b.z;
+    real D = a.x - c.x, E = a.y - c.y, F = a.z - c.z;
+    real G = d.x, H = d.y, I = d.z;
+    real J = a.x - e.x, K = a.y - e.y, L = a.z - e.z;
+
+    // M is the determinant; 0 means the ray is parallel to the plane (or the triangle is flat)
+    real EIHF = E * I - H * F, GFDI = G * F - D * I, DHEG = D * H - E * G;
+    real M = A * EIHF + B * GFDI + C * DHEG;
+    if (M == 0 || !std::isfinite(M))
+        return false;
+
+    // Compute t, then reject early, as the handout does: t, then gamma, then beta
+    real AKJB = A * K - J * B, JCAL = J * C - A * L, BLKC = B * L - K * C;
+    real t = -(F * AKJB + E * JCAL + D * BLKC) / M;
+    if (!(t > tMin && t < tMax))
+        return false;
+    real gamma = (I * AKJB + H * JCAL + G * BLKC) / M;
+    if (gamma < 0 || gamma > 1)
+        return false;
+    real beta = (J * EIHF + K * GFDI + L * DHEG) / M;
+    if (beta < 0 || beta > 1 - gamma)
+        return false;
+
+    if (IsDegenerate(tri))
+        return false;
+    SetTriangleHit(tri, ray, t, 1 - beta - gamma, beta, gamma, hit);
+    return true;
+}
+
+static bool HitTriangle(TriangleMethod method, const Triangle *tri, const Ray *ray, real tMin,
+                        real tMax, RayHit *hit) {
+    return method == TRIANGLE_CRAMER ? IntersectTriangleCramer(tri, ray, tMin, tMax, hit)
+                                     : IntersectTriangle(tri, ray, tMin, tMax, hit);
+}
+
+// The second handout's nearest hit over the list of shapes: every hit shrinks tMax, so each
+// later shape only counts if it is nearer. A tie keeps the earlier shape.
+bool FindNearestHit(const Scene *scene, TriangleMethod method, const Ray *ray, real tMin, real tMax,
+                    RayHit *hit) {
+    bool found = false;
+    for (size_t i = 0; i < scene->spheres.size(); i++) {
+        if (IntersectSphere(&scene->spheres[i], ray, tMin, tMax, hit)) {
+            hit->index = (int)i;
+            tMax = hit->t;
+            found = true;
+        }
+    }
+    for (size_t i = 0; i < scene->triangles.size(); i++) {
+        if (HitTriangle(method, &scene->triangles[i], ray, tMin, tMax, hit)) {
+            hit->index = (int)i;
+            tMax = hit->t;
+            found = true;
+        }
+    }
+    return found;
+}
+
+// Any hit in (tMin, tMax), for shadow rays: the first blocker found ends the search.
+bool AnyHit(const Scene *scene, TriangleMethod method, const Ray *ray, real tMin, real tMax) {
+    RayHit scratch;
+    for (const Sphere &s : scene->spheres)
+        if (IntersectSphere(&s, ray, tMin, tMax, &scratch))
+            return true;
+    for (const Triangle &tri : scene->triangles)
+        if (HitTriangle(method, &tri, ray, tMin, tMax, &scratch))
+            return true;
+    return false;
+}
+
+// Self-intersection ("shadow acne") is prevented by one method for every ray that leaves a
+// surface (pbrt-v4 §6.8.6): the hit point is within pointError of the true surface, so moving
+// it along the normal by the error box's extent in that direction, sum |n_i| pointError_i, puts
+// it on the side the new ray goes to, whatever the scene's scale. Rounding the moved point
+// outward (nextafter) keeps the addition itself from undoing the move. The new ray then uses
+// tMin = 0, and the intersectors' own "t above its rounding error" tests do the rest.
+vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir) {
+    real distance = Dot(Abs(hit->normal), hit->pointError);
+    vec3 offset = distance * hit->normal;
+    if (Dot(dir, hit->normal) < 0)
+        offset = -offset;
+    vec3 moved = hit->point + offset;
+    real *coord[3] = {&moved.x, &moved.y, &moved.z};
+    real push[3] = {offset.x, offset.y, offset.z};
+    for (int i = 0; i < 3; i++) {
+        if (push[i] > 0)
+            *coord[i] = std::nextafter(*coord[i], kInfinity);
+        else if (push[i] < 0)
+            *coord[i] = std::nextafter(*coord[i], -kInfinity);
+    }
+    return moved;
+}

@@ -1,0 +1,40 @@
+// scene_default.cpp -- the assignment scene (SPEC section 6), as data.
+//
+// 512 x 512, the handout's Perspective camera at the origin (screen 2 units wide, 2 away), one
+// white point light, ambient floor 0.2, black background, at most 10 rays in a chain: two mirror
+// spheres and a red one in a box of a blue back wall, a white floor and a red right wall.
+#include "ray.h"
+
+void BuildDefaultScene(Scene *scene) {
+    enum { MIRROR, RED, BLUE, WHITE };
+    // name      diffuse      mirror
+    scene->materials = {
+        {"mirror", {1, 1, 1}, 1},
+        {"red", {1, 0, 0}, 0},
+        {"blue", {0, 0, 1}, 0},
+        {"white", {1, 1, 1}, 0},
+    };
+    // center          radius  material
+    scene->spheres = {
+        {{0, 0, -16}, 2, MIRROR},
+        {{3, -1, -14}, 1, MIRROR},
+        {{-3, -1, -14}, 1, RED},
+    };
+    // a              b              c               material
+    scene->triangles = {
+        {{-8, -2, -20}, {8, -2, -20}, {8, 10, -20}, BLUE},   // back wall
+        {{-8, -2, -20}, {8, 10, -20}, {-8, 10, -20}, BLUE},  // back wall
+        {{-8, -2, -20}, {8, -2, -10}, {8, -2, -20}, WHITE},  // floor
+        {{-8, -2, -20}, {-8, -2, -10}, {8, -2, -10}, WHITE}, // floor
+        {{8, -2, -20}, {8, -2, -10}, {8, 10, -20}, RED},     // right wall
+    };
+    // position      intensity
+    scene->lights = {
+        {{3, 5, -15}, {1, 1, 1}},
+    };
+    // eye        distance width  pixels
+    scene->camera = {{0, 0, 0}, 2, 2, 512, 512};
+    scene->ambient = 0.2;
+    scene->background = {0, 0, 0};
+    scene->depth = 10;
+}

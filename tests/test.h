@@ -1,0 +1,43 @@
+// tests/test.h -- rt's own small test harness (no framework: the design card allows none).
+//
+// CHECK(cond, why) and CHECK_NEAR(actual, expected, tolerance, why) count a pass or print the
+// failure with its file and line; `why` says what was predicted and how. main (test_main.cpp)
+// runs every test group and ends with the line `N passed, M failed`.
+#ifndef RT_TEST_H
+#define RT_TEST_H
+
+#include "ray.h"
+
+#include <string>
+
+// Records one check; prints `file:line: FAILED why (detail)` when it fails.
+void TestCheck(bool ok, const char *file, int line, const std::string &why,
+               const std::string &detail);
+std::string DescribeNear(double actual, double expected, double tolerance);
+
+#define CHECK(cond, why) TestCheck((cond), __FILE__, __LINE__, (why), #cond)
+#define CHECK_NEAR(actual, expected, tolerance, why)                                               \
+    do {                                                                                           \
+        double a_ = (actual), e_ = (expected), t_ = (tolerance);                                   \
+        TestCheck(std::fabs(a_ - e_) <= t_, __FILE__, __LINE__, (why), DescribeNear(a_, e_, t_));  \
+    } while (0)
+
+// Relative tolerance for values computed in `real` by a few operations: 64 ulps of the build's
+// precision, so the same predictions hold in the double and the float test program.
+const double kRelTol = 64 * std::numeric_limits<real>::epsilon();
+
+// A default render configuration for tests: the scene's size, 1 spp, its depth, one thread.
+RenderSettings TestSettings(const Scene *scene);
+
+// The program under test for command-line checks: $RAY, or ./ray (./ray_float in the float build).
+std::string RayProgram();
+
+// The test groups, one per file.
+void TestGeometry();
+void TestTriangles();
+void TestShading();
+void TestCamera();
+void TestAssignmentImage();
+void TestProgram();
+
+#endif

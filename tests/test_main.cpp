@@ -1,0 +1,58 @@
+// tests/test_main.cpp -- the harness: counts checks, prints failures, runs every group.
+#include "test.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+static int passedChecks = 0, failedChecks = 0; // the harness's own tally, not the renderer's
+
+void TestCheck(bool ok, const char *file, int line, const std::string &why,
+               const std::string &detail) {
+    if (ok) {
+        passedChecks++;
+        return;
+    }
+    failedChecks++;
+    printf("%s:%d: FAILED %s (%s)\n", file, line, why.c_str(), detail.c_str());
+}
+
+std::string DescribeNear(double actual, double expected, double tolerance) {
+    char text[160];
+    snprintf(text, sizeof text, "got %.17g, expected %.17g within %.3g", actual, expected,
+             tolerance);
+    return text;
+}
+
+RenderSettings TestSettings(const Scene *scene) {
+    RenderSettings s;
+    s.width = scene->camera.widthPixels;
+    s.height = scene->camera.heightPixels;
+    s.samplesPerPixel = 1;
+    s.depth = scene->depth;
+    s.threads = 1;
+    s.triangleMethod = TRIANGLE_WATERTIGHT;
+    s.showProgress = false;
+    return s;
+}
+
+std::string RayProgram() {
+    const char *fromEnvironment = getenv("RAY");
+    if (fromEnvironment && *fromEnvironment)
+        return fromEnvironment;
+#ifdef RT_FLOAT
+    return "./ray_float";
+#else
+    return "./ray";
+#endif
+}
+
+int main() {
+    TestGeometry();
+    TestTriangles();
+    TestShading();
+    TestCamera();
+    TestAssignmentImage();
+    TestProgram();
+    printf("%d passed, %d failed\n", passedChecks, failedChecks);
+    return failedChecks == 0 ? 0 : 1;
+}
