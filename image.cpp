@@ -5,6 +5,7 @@
 // image, and an existing file stays exactly as it was.
 #include "ray.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -84,5 +85,41 @@ bool ReadPng(const char *path, Image *image, std::string *error) {
         png_image_free(&png);
         return false;
     }
+    return true;
+}
+
+// A heat scale for x in [0, 1]: black, red, yellow, white, each channel rising in turn.
+color HeatColor(real x) {
+    x = std::fmin(real(1), std::fmax(real(0), x)) * 3;
+    return {std::fmin(x, real(1)), std::fmin(std::fmax(x - 1, real(0)), real(1)),
+            std::fmin(std::fmax(x - 2, real(0)), real(1))};
+}
+
+bool CompareImages(const Image *a, const Image *b, int tolerance, ImageDifference *difference,
+                   Image *heatmap) {
+    if (a->width != b->width || a->height != b->height)
+        return false;
+    size_t pixels = (size_t)a->width * a->height;
+    heatmap->width = a->width;
+    heatmap->height = a->height;
+    heatmap->pixels.assign(pixels * 3, 0);
+    double sumSquares = 0;
+    *difference = ImageDifference{0, 0, 0, 0};
+    for (size_t p = 0; p < pixels; p++) {
+        int largest = 0;
+        for (int c = 0; c < 3; c++) {
+            int d = std::abs((int)a->pixels[3 * p + c] - (int)b->pixels[3 * p + c]);
+            sumSquares += (double)d * d;
+            largest = std::max(largest, d);
+        }
+        difference->largest = std::max(difference->largest, largest);
+        difference->pixelsOver += largest > tolerance;
+        color heat = HeatColor(real(largest) / 255);
+        heatmap->pixels[3 * p + 0] = ToByte(heat.x);
+        heatmap->pixels[3 * p + 1] = ToByte(heat.y);
+        heatmap->pixels[3 * p + 2] = ToByte(heat.z);
+    }
+    difference->rmse = std::sqrt(sumSquares / (3.0 * (double)std::max(pixels, (size_t)1)));
+    difference->psnr = difference->rmse > 0 ? 20 * std::log10(255 / difference->rmse) : INFINITY;
     return true;
 }

@@ -1,4 +1,5 @@
-// ray.cpp -- the program: reads the command line, builds the scene, renders, writes the PNG.
+// ray.cpp -- the program: reads the command line, loads the scene, and renders it, probes it or
+// compares two images.
 //
 // `ray [SCENE] [options]`, as pinned in SPEC.md section 2. Errors are values until they reach
 // main, which prints one line `ray: MESSAGE` and exits with 2 (bad usage or input) or 3 (I/O).
@@ -10,18 +11,21 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <iostream>
 #include <thread>
 
-static const char *kVersion = "rt 0.1.0";
+static const char *kVersion = "rt 0.2.0";
 
 static const char *kUsage =
     "usage: ray [SCENE] [options]\n"
     "\n"
-    "SCENE is `default` (the assignment scene, also when omitted) or `test` (rt's own scene).\n"
+    "SCENE is `default` (the assignment scene, also when omitted), `test` (rt's own scene)\n"
+    "or the path of a scene file (see the README for the format).\n"
     "\n"
-    "options:\n"
-    "  -o FILE                  output PNG (default: reference.png for default, test.png for "
-    "test)\n"
+    "rendering:\n"
+    "  -o FILE                  output PNG (default: reference.png for default, test.png for\n"
+    "                           test, NAME.png for a file NAME.scene)\n"
     "  --size W[xH]             image size in pixels, 1..16384 (H defaults to W)\n"
     "  --spp N                  samples per pixel on a regular grid, 1..65536 (default 1)\n"
     "  --depth N                most rays in one chain, primary included, 1..1000 (default 10)\n"
@@ -29,16 +33,34 @@ static const char *kUsage =
     "  --triangle watertight|cramer\n"
     "                           ray/triangle method: Woop-Benthin-Wald (default) or the\n"
     "                           handout's Cramer's rule\n"
+    "  --view normal|depth|id|cost|shadow\n"
+    "                           draw a debug view instead of the lit image\n"
     "  --stats                  print time, rays by kind, Mrays/s and the effects used to stderr\n"
+    "\n"
+    "probing (prints JSON, renders nothing):\n"
+    "  --ray OX OY OZ DX DY DZ  the nearest hit of one ray\n"
+    "  --rays FILE              the nearest hit of every line `OX OY OZ DX DY DZ` (- = stdin)\n"
+    "  --pixel X Y              the tree of rays behind pixel (X, Y)\n"
+    "\n"
+    "comparing:\n"
+    "  --compare A.png B.png    RMSE, PSNR, largest difference, pixels over the tolerance;\n"
+    "                           -o FILE writes a heat map; exit 0 within tolerance, 1 outside\n"
+    "  --tolerance T            largest channel difference (0..255) still counted equal (0)\n"
+    "\n"
     "  --help, --version        this text; the version\n";
 
-// What the command line asks for; zero means "not given, use the scene's or the default".
+// What the command line asks for; zero or empty means "not given".
 struct Options {
-    const char *scene = "default";
-    const char *output = nullptr;
+    std::string scene = "default", output;
     int width = 0, height = 0, spp = 1, depth = 0, threads = 0;
     TriangleMethod triangleMethod = TRIANGLE_WATERTIGHT;
     bool stats = false, help = false, version = false;
+    bool probeRay = false, pixel = false, view = false, compare = false;
+    real probe[6];
+    int pixelX = 0, pixelY = 0;
+    ViewKind viewKind = VIEW_NORMAL;
+    std::string raysFile, compareA, compareB;
+    double tolerance = 0;
 };
 
 // Reads a whole decimal integer in [lo, hi]; anything else is an error naming the option.
@@ -70,73 +92,128 @@ static bool ParseSize(const char *text, Options *opt, std::string *error) {
            ParseInt(h.c_str(), 1, 16384, "--size height", &opt->height, error);
 }
 
-static bool ParseOptions(int argc, char **argv, Options *opt, std::string *error) {
-    bool sceneGiven = false;
-    for (int k = 1; k < argc; k++) {
-        std::string a = argv[k];
-        // Options that take one value
-        const char *needsValue[] = {"-o", "--size", "--spp", "--depth", "--threads", "--triangle"};
-        bool takesValue = false;
-        for (const char *name : needsValue)
-            takesValue = takesValue || a == name;
-        if (takesValue && k + 1 >= argc) {
-            *error = a + " needs a value";
+// One option with its values v[0..]; false with *error if a value is bad.
+static bool ParseOption(const std::string &a, char **v, Options *opt, std::string *error) {
+    if (a == "-o")
+        opt->output = v[0];
+    else if (a == "--size")
+        return ParseSize(v[0], opt, error);
+    else if (a == "--spp")
+        return ParseInt(v[0], 1, 65536, "--spp", &opt->spp, error);
+    else if (a == "--depth")
+        return ParseInt(v[0], 1, 1000, "--depth", &opt->depth, error);
+    else if (a == "--threads")
+        return ParseInt(v[0], 1, 1024, "--threads", &opt->threads, error);
+    else if (a == "--triangle") {
+        std::string m = v[0];
+        opt->triangleMethod = m == "cramer" ? TRIANGLE_CRAMER : TRIANGLE_WATERTIGHT;
+        if (m != "watertight" && m != "cramer") {
+            *error = "--triangle must be watertight or cramer, not '" + m + "'";
             return false;
         }
-        bool ok = true;
-        if (a == "-o")
-            opt->output = argv[++k];
-        else if (a == "--size")
-            ok = ParseSize(argv[++k], opt, error);
-        else if (a == "--spp")
-            ok = ParseInt(argv[++k], 1, 65536, "--spp", &opt->spp, error);
-        else if (a == "--depth")
-            ok = ParseInt(argv[++k], 1, 1000, "--depth", &opt->depth, error);
-        else if (a == "--threads")
-            ok = ParseInt(argv[++k], 1, 1024, "--threads", &opt->threads, error);
-        else if (a == "--triangle") {
-            std::string m = argv[++k];
-            ok = m == "watertight" || m == "cramer";
-            opt->triangleMethod = m == "cramer" ? TRIANGLE_CRAMER : TRIANGLE_WATERTIGHT;
-            if (!ok)
-                *error = "--triangle must be watertight or cramer, not '" + m + "'";
-        } else if (a == "--stats")
-            opt->stats = true;
-        else if (a == "--help" || a == "-h")
-            opt->help = true;
-        else if (a == "--version")
-            opt->version = true;
-        else if (a.size() > 1 && a[0] == '-') {
-            *error = "unknown option '" + a + "' (see ray --help)";
+    } else if (a == "--view") {
+        opt->view = FindView(v[0], &opt->viewKind);
+        if (!opt->view) {
+            *error =
+                std::string("--view must be normal, depth, id, cost or shadow, not '") + v[0] + "'";
             return false;
-        } else if (sceneGiven) {
-            *error = "more than one scene given: '" + std::string(opt->scene) + "' and '" + a + "'";
-            return false;
-        } else {
-            opt->scene = argv[k];
-            sceneGiven = true;
         }
-        if (!ok)
+    } else if (a == "--ray") {
+        opt->probeRay = true;
+        for (int k = 0; k < 6; k++)
+            if (!ParseReal(v[k], &opt->probe[k], error)) {
+                *error = "--ray: " + *error;
+                return false;
+            }
+        if (opt->probe[3] == 0 && opt->probe[4] == 0 && opt->probe[5] == 0) {
+            *error = "--ray: direction is zero";
             return false;
+        }
+    } else if (a == "--rays")
+        opt->raysFile = v[0];
+    else if (a == "--pixel") {
+        opt->pixel = true;
+        return ParseInt(v[0], 0, 16383, "--pixel X", &opt->pixelX, error) &&
+               ParseInt(v[1], 0, 16383, "--pixel Y", &opt->pixelY, error);
+    } else if (a == "--compare") {
+        opt->compare = true;
+        opt->compareA = v[0];
+        opt->compareB = v[1];
+    } else if (a == "--tolerance") {
+        real t;
+        if (!ParseReal(v[0], &t, error) || !(t >= 0 && t <= 255)) {
+            *error = std::string("--tolerance must be a number from 0 to 255, not '") + v[0] + "'";
+            return false;
+        }
+        opt->tolerance = t;
     }
     return true;
 }
 
-// Builds the named built-in scene and its default output name.
-static bool LoadScene(const char *name, Scene *scene, const char **defaultOutput,
+static bool ParseOptions(int argc, char **argv, Options *opt, std::string *error) {
+    static const struct {
+        const char *name;
+        int values;
+    } kOptions[] = {{"-o", 1},        {"--size", 1},     {"--spp", 1},     {"--depth", 1},
+                    {"--threads", 1}, {"--triangle", 1}, {"--view", 1},    {"--ray", 6},
+                    {"--rays", 1},    {"--pixel", 2},    {"--compare", 2}, {"--tolerance", 1},
+                    {"--stats", 0},   {"--help", 0},     {"-h", 0},        {"--version", 0}};
+    bool sceneGiven = false;
+    for (int k = 1; k < argc; k++) {
+        std::string a = argv[k];
+        int values = -1;
+        for (const auto &o : kOptions)
+            if (a == o.name)
+                values = o.values;
+        if (values < 0 && a.size() > 1 && a[0] == '-') {
+            *error = "unknown option '" + a + "' (see ray --help)";
+            return false;
+        }
+        if (values < 0) { // the scene
+            if (sceneGiven) {
+                *error = "more than one scene given: '" + opt->scene + "' and '" + a + "'";
+                return false;
+            }
+            opt->scene = a;
+            sceneGiven = true;
+            continue;
+        }
+        if (k + values >= argc) {
+            *error = a + " needs " + std::to_string(values) + " value" + (values > 1 ? "s" : "");
+            return false;
+        }
+        opt->stats = opt->stats || a == "--stats";
+        opt->help = opt->help || a == "--help" || a == "-h";
+        opt->version = opt->version || a == "--version";
+        if (!ParseOption(a, argv + k + 1, opt, error))
+            return false;
+        k += values;
+    }
+    int modes = opt->probeRay + !opt->raysFile.empty() + opt->pixel + opt->compare + opt->view;
+    if (modes > 1) {
+        *error = "choose one of --ray, --rays, --pixel, --view and --compare";
+        return false;
+    }
+    return true;
+}
+
+// Loads the named built-in scene or a scene file, and picks the default output name.
+static bool LoadScene(const std::string &name, Scene *scene, std::string *defaultOutput,
                       std::string *error) {
-    if (strcmp(name, "default") == 0) {
+    if (name == "default") {
         BuildDefaultScene(scene);
         *defaultOutput = "reference.png";
         return true;
     }
-    if (strcmp(name, "test") == 0) {
+    if (name == "test") {
         BuildTestScene(scene);
         *defaultOutput = "test.png";
         return true;
     }
-    *error = std::string("unknown scene '") + name + "': this version knows `default` and `test`";
-    return false;
+    std::string base = name.substr(name.find_last_of('/') + 1); // NAME.png for path/NAME.scene
+    size_t dot = base.find_last_of('.');
+    *defaultOutput = (dot == std::string::npos || dot == 0 ? base : base.substr(0, dot)) + ".png";
+    return ReadSceneFile(name.c_str(), scene, error);
 }
 
 static void PrintStats(const RayStats *s, const RenderSettings *settings, double renderSeconds,
@@ -151,19 +228,76 @@ static void PrintStats(const RayStats *s, const RenderSettings *settings, double
             (unsigned long long)total);
     fprintf(stderr, "speed: %.2f Mrays/s\n", total / renderSeconds / 1e6);
     std::string effects;
-    if (s->shadow > 0)
-        effects += " shadows";
-    if (s->reflection > 0)
-        effects += " reflection";
-    if (s->refraction > 0)
-        effects += " refraction";
-    if (settings->samplesPerPixel > 1)
-        effects += " antialiasing";
+    const char *names[] = {" shadows", " reflection", " refraction", " specular", " antialiasing"};
+    bool used[] = {s->shadow > 0, s->reflection > 0, s->refraction > 0, s->specularTerms > 0,
+                   settings->samplesPerPixel > 1};
+    for (int k = 0; k < 5; k++)
+        if (used[k])
+            effects += names[k];
     fprintf(stderr, "effects: %s\n", effects.empty() ? "none" : effects.c_str() + 1);
 }
 
 static double SecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// --compare: prints the difference, writes the heat map if -o was given. Returns the exit code.
+static int Compare(const Options *opt) {
+    Image a, b, heat;
+    std::string error;
+    if (!ReadPng(opt->compareA.c_str(), &a, &error) ||
+        !ReadPng(opt->compareB.c_str(), &b, &error)) {
+        fprintf(stderr, "ray: %s\n", error.c_str());
+        return 2;
+    }
+    ImageDifference d;
+    if (!CompareImages(&a, &b, (int)opt->tolerance, &d, &heat)) {
+        printf("sizes differ: %dx%d and %dx%d\n", a.width, a.height, b.width, b.height);
+        return 1;
+    }
+    printf("rmse: %.6f\npsnr: %.2f dB\nlargest difference: %d\npixels over tolerance %g: %ld of "
+           "%ld\n",
+           d.rmse, d.psnr, d.largest, opt->tolerance, d.pixelsOver, (long)a.width * a.height);
+    if (!opt->output.empty() && !WritePng(opt->output.c_str(), &heat, &error)) {
+        fprintf(stderr, "ray: %s\n", error.c_str());
+        return 3;
+    }
+    return d.pixelsOver > 0 ? 1 : 0;
+}
+
+// --ray or --rays: one JSON line per ray. Returns the exit code.
+static int Probe(const Options *opt, const Scene *scene, const RenderSettings *settings) {
+    if (opt->probeRay) {
+        Ray ray = {{opt->probe[0], opt->probe[1], opt->probe[2]},
+                   {opt->probe[3], opt->probe[4], opt->probe[5]}};
+        printf("%s\n", ProbeRayJson(scene, settings, &ray).c_str());
+        return 0;
+    }
+    std::ifstream file;
+    bool fromStdin = opt->raysFile == "-";
+    if (!fromStdin) {
+        file.open(opt->raysFile);
+        if (!file) {
+            fprintf(stderr, "ray: %s: %s\n", opt->raysFile.c_str(), strerror(errno));
+            return 2;
+        }
+    }
+    std::istream &in = fromStdin ? std::cin : file;
+    int status = 0, lineNumber = 0;
+    for (std::string line; std::getline(in, line);) {
+        lineNumber++;
+        Ray ray;
+        bool blank;
+        std::string error;
+        if (!ParseProbeLine(line, &ray, &blank, &error)) {
+            printf("%s\n",
+                   ProbeErrorJson("line " + std::to_string(lineNumber) + ": " + error).c_str());
+            status = 2;
+        } else if (!blank) {
+            printf("%s\n", ProbeRayJson(scene, settings, &ray).c_str());
+        }
+    }
+    return status;
 }
 
 int main(int argc, char **argv) {
@@ -180,31 +314,49 @@ int main(int argc, char **argv) {
             fputc('\n', stdout);
         return 0;
     }
+    if (opt.compare)
+        return Compare(&opt);
 
     Scene scene;
-    const char *defaultOutput = nullptr;
+    std::string defaultOutput;
     if (!LoadScene(opt.scene, &scene, &defaultOutput, &error)) {
         fprintf(stderr, "ray: %s\n", error.c_str());
         return 2;
     }
     RenderSettings settings;
-    settings.width = opt.width ? opt.width : scene.camera.widthPixels;
-    settings.height = opt.height ? opt.height : scene.camera.heightPixels;
+    settings.width = opt.width ? opt.width : scene.width;
+    settings.height = opt.height ? opt.height : scene.height;
     settings.samplesPerPixel = opt.spp;
     settings.depth = opt.depth ? opt.depth : scene.depth;
     unsigned hardware = std::thread::hardware_concurrency();
     settings.threads = opt.threads ? opt.threads : (hardware ? (int)hardware : 1);
     settings.triangleMethod = opt.triangleMethod;
     settings.showProgress = true;
+    PlanRender(&scene, &settings);
+
+    if (opt.probeRay || !opt.raysFile.empty())
+        return Probe(&opt, &scene, &settings);
+    if (opt.pixel) {
+        if (opt.pixelX >= settings.width || opt.pixelY >= settings.height) {
+            fprintf(stderr, "ray: --pixel: (%d, %d) is outside the %dx%d image\n", opt.pixelX,
+                    opt.pixelY, settings.width, settings.height);
+            return 2;
+        }
+        printf("%s\n", PixelTreeJson(&scene, &settings, opt.pixelX, opt.pixelY).c_str());
+        return 0;
+    }
 
     Image image;
-    RayStats stats = {0, 0, 0, 0};
+    RayStats stats = {0, 0, 0, 0, 0};
     auto renderStart = std::chrono::steady_clock::now();
-    Render(&scene, &settings, &image, &stats);
+    if (opt.view)
+        RenderView(&scene, &settings, opt.viewKind, &image);
+    else
+        Render(&scene, &settings, &image, &stats);
     double renderSeconds = SecondsSince(renderStart);
 
-    const char *output = opt.output ? opt.output : defaultOutput;
-    if (!WritePng(output, &image, &error)) {
+    std::string output = opt.output.empty() ? defaultOutput : opt.output;
+    if (!WritePng(output.c_str(), &image, &error)) {
         fprintf(stderr, "ray: %s\n", error.c_str());
         return 3;
     }

@@ -84,6 +84,25 @@ struct Perspective {
     int heightPixels;
 };
 
+// The scene's camera, in one of the scene file's three forms. PlanRender turns a lookat camera
+// into the screen form for the image's size; every pixel's ray then comes from GetCameraRay.
+enum CameraKind {
+    CAMERA_PERSPECTIVE, // the assignment handout's Perspective (its pixel counts set per render)
+    CAMERA_SCREEN,      // the second handout's: eye e, screen corner l, edges h and v
+    CAMERA_LOOKAT       // from, to, up and a vertical field of view
+};
+
+struct Camera {
+    CameraKind kind;
+    Perspective perspective; // CAMERA_PERSPECTIVE
+    vec3 eye;                // CAMERA_SCREEN: the eye e,
+    vec3 lowerLeft;          // the screen's lower-left corner l,
+    vec3 horizontal;         // its bottom edge h, from l to the lower-right corner,
+    vec3 vertical;           // and its left edge v, from l to the upper-left corner
+    vec3 from, to, up;       // CAMERA_LOOKAT
+    real fovDegrees;         // CAMERA_LOOKAT: vertical field of view
+};
+
 enum ShapeKind { SHAPE_SPHERE, SHAPE_TRIANGLE };
 
 // What a ray hit: the handout's fields, plus which shape (for probes and debugging) and
@@ -112,11 +131,16 @@ struct Triangle {
     int material;
 };
 
-// Surface description. mirror = 1 is a perfect mirror whose own colour is not used.
+// Surface description, with the scene file's defaults: white, matte, opaque. mirror = 1 is a
+// perfect mirror whose own colour is not used; ior > 0 makes the material clear glass.
 struct Material {
     std::string name;
-    color diffuse; // kd
-    real mirror;   // fraction of the reflected ray's colour mixed in, 0..1
+    color diffuse;  // kd
+    color ambient;  // ka, used by `shading phong` (defaults to kd)
+    real specular;  // ks, the Phong highlight's weight (0: none)
+    real shininess; // n, the Phong exponent
+    real mirror;    // fraction of the reflected ray's colour mixed in, 0..1
+    real ior;       // index of refraction of glass; 0 for an opaque material
 };
 
 struct Light {
@@ -124,10 +148,18 @@ struct Light {
     color intensity;
 };
 
+// The two lighting rules of SPEC section 3.
+enum ShadingModel {
+    SHADING_FLOOR, // the assignment handout's kd * max(ambient, sum of I (N.L))
+    SHADING_PHONG  // the second handout's ka Ia + sum of I (kd (N.L) + ks max(0, R.V)^n)
+};
+
 // Everything a render needs to know about the world. Shapes name materials by index.
 struct Scene {
-    Perspective camera;
-    real ambient;     // the handout's ambient floor
+    int width, height; // image size in pixels
+    Camera camera;
+    ShadingModel shading;
+    real ambient;     // the ambient intensity: the floor, or Phong's Ia
     color background; // colour of a ray that hits nothing
     int depth;        // most rays in one chain, primary included
     std::vector<Material> materials;
@@ -142,6 +174,16 @@ enum TriangleMethod {
     TRIANGLE_CRAMER      // the handout's Cramer's rule with variables A..M
 };
 
+// Which effects a render can need, decided once per render from the scene and the settings
+// (PlanEffects); the shading code skips whole paths for the absent ones.
+struct Effects {
+    bool shadows;      // lights, and shapes that could stand in their way
+    bool reflection;   // a material with mirror > 0 or glass, and depth > 1
+    bool refraction;   // a glass material, and depth > 1
+    bool specular;     // Phong shading, lights, and a material with ks > 0
+    bool antialiasing; // more than one sample per pixel
+};
+
 // How one render is done; filled from the scene and the command line.
 struct RenderSettings {
     int width, height;   // image size in pixels
@@ -150,11 +192,36 @@ struct RenderSettings {
     int threads;         // worker threads; the image never depends on it
     TriangleMethod triangleMethod;
     bool showProgress; // redraw a progress line on standard error
+    Effects effects;   // filled by PlanRender
+    Camera camera;     // the scene's camera for this image size, filled by PlanRender
 };
 
-// Rays cast, by kind. Each thread counts into its own and the counts are added at the end.
+enum RayKind { RAY_PRIMARY, RAY_SHADOW, RAY_REFLECTION, RAY_REFRACTION };
+
+// Rays cast, by kind, and Phong highlights evaluated. Each row of the image counts into its own
+// and the counts are added up at the end.
 struct RayStats {
     uint64_t primary, shadow, reflection, refraction;
+    uint64_t specularTerms;
+};
+
+// One ray of a traced ray tree (`--pixel`): what it was, what it hit, the colour it brought
+// back, and its parent (the node whose hit spawned it; -1 for the primary ray).
+struct RayNode {
+    RayKind kind;
+    Ray ray;
+    bool hit;      // for a shadow ray: it was blocked
+    RayHit record; // the hit, or the blocker of a shadow ray
+    color light;   // colour brought back (for a shadow ray: the light's share when visible)
+    int parent;
+};
+
+// What a trace reports besides its colour: the rays it cast and, when `tree` is not null, every
+// ray as a node; `current` is the node whose hit is being shaded.
+struct TraceLog {
+    RayStats stats;
+    std::vector<RayNode> *tree;
+    int current;
 };
 
 // An 8-bit RGB image, rows from the top, 3 bytes a pixel.
@@ -187,9 +254,21 @@ vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir);
 
 // ---- shade.cpp: lighting and the ray chain ---------------------------------------------------
 
-// Colour seen along `ray`, which is ray number `rayNumber` of its chain (1 = primary).
-color TraceRay(const Scene *scene, const RenderSettings *settings, const Ray *ray, int rayNumber,
-               RayStats *stats);
+// Decides which effects a render of this scene with these settings can need (see Effects).
+void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects);
+
+// Colour seen along `ray`, a ray of the given kind and number `rayNumber` in its chain
+// (1 = primary). Counts it, and every ray it leads to, in log->stats (and log->tree if set).
+color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
+               int rayNumber, TraceLog *log);
+
+// Snell's law for unit d against the unit normal n (d.n <= 0), eta = n1 / n2. Writes the unit
+// refracted direction to *t and returns true, or returns false for total internal reflection.
+bool Refract(vec3 d, vec3 n, real eta, vec3 *t);
+
+// Exact Fresnel reflectance of unpolarised light for cos(incident angle), eta = n1 / n2;
+// 1 under total internal reflection.
+real FresnelReflectance(real cosI, real eta);
 
 // ---- render.cpp: the camera and the render loop ------------------------------------------------
 
@@ -198,6 +277,22 @@ color TraceRay(const Scene *scene, const RenderSettings *settings, const Ray *ra
 // vector from the eye to that point of the screen, not normalised.
 void GetRay(Perspective p, vec2 screenCoord, Ray *ray);
 
+// The second handout's camera: the ray from the eye through l + (x / W) h + (1 - y / H) v for
+// screenCoord (x, y) in pixels from the top-left of a W x H image (the handout counts rows from
+// the bottom). ray->dir is not normalised.
+void GetScreenRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray);
+
+// The one way every pixel's ray is made: through GetRay or GetScreenRay, per camera kind.
+void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray);
+
+// A `camera lookat` in the screen form for a W x H image, the screen one unit in front of the
+// eye. Returns false if from = to, up is parallel to the view, or fov is not in (0, 180).
+bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen);
+
+// Fills in what follows from the scene and the rest of *settings: the effects the render can
+// need (PlanEffects) and the camera prepared for settings->width x settings->height.
+void PlanRender(const Scene *scene, RenderSettings *settings);
+
 // Renders every pixel on settings->threads threads into *image; adds the rays cast to *stats.
 void Render(const Scene *scene, const RenderSettings *settings, Image *image, RayStats *stats);
 
@@ -205,10 +300,13 @@ void Render(const Scene *scene, const RenderSettings *settings, Image *image, Ra
 color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
                   RayStats *stats);
 
+// Pixel (i, j)'s sample s of n, in pixels from the image's top-left corner.
+vec2 SamplePosition(int i, int j, int s, int n);
+
 // Colour channel to 8 bits: round(clamp(c, 0, 1) * 255), no gamma.
 uint8_t ToByte(real c);
 
-// ---- image.cpp: PNG files --------------------------------------------------------------------
+// ---- image.cpp: PNG files and comparing images ------------------------------------------------
 
 // Writes *image to path as an 8-bit RGB PNG, through a temporary file renamed into place, so
 // the path holds either its old contents or the whole new image. Returns false and sets *error
@@ -217,6 +315,64 @@ bool WritePng(const char *path, const Image *image, std::string *error);
 
 // Reads any PNG file into *image as 8-bit RGB. Returns false and sets *error on failure.
 bool ReadPng(const char *path, Image *image, std::string *error);
+
+// How two images of the same size differ, channel values in 0..255.
+struct ImageDifference {
+    double rmse;     // root mean square difference over all channels
+    double psnr;     // 20 log10(255 / rmse) in dB; infinite for identical images
+    int largest;     // largest difference of one channel
+    long pixelsOver; // pixels with a channel differing by more than the tolerance
+};
+
+// A heat scale for x in [0, 1]: black, red, yellow, white.
+color HeatColor(real x);
+
+// Compares a and b (same size) and draws *heatmap: black where equal, through red and yellow to
+// white for the largest possible difference. Returns false if the sizes differ.
+bool CompareImages(const Image *a, const Image *b, int tolerance, ImageDifference *difference,
+                   Image *heatmap);
+
+// ---- scene_file.cpp: scene files (SPEC section 3) -------------------------------------------
+
+// The scene a file starts from: nothing in it, 512 x 512, `camera perspective 0 0 0 2 2`,
+// ambient 0.2, floor shading, black background, depth 10.
+void InitScene(Scene *scene);
+
+// Reads a scene file. On failure returns false with *error = "FILE:LINE: message".
+bool ReadSceneFile(const char *path, Scene *scene, std::string *error);
+
+// Reads a scene from text, naming it fileName in errors.
+bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
+                    std::string *error);
+
+// Reads a whole number token: optional sign, decimal digits, nothing else, finite. Returns false
+// and sets *error for anything else (inf, nan, hexadecimal, trailing characters).
+bool ParseReal(const std::string &token, real *value, std::string *error);
+
+// ---- probe.cpp: probes and ray trees (SPEC section 4) -----------------------------------------
+
+// Reads a probe line `OX OY OZ DX DY DZ`. Returns false with *error for a bad line; sets *blank
+// (and returns true) for a blank or comment line.
+bool ParseProbeLine(const std::string &line, Ray *ray, bool *blank, std::string *error);
+
+// The JSON line for the nearest hit of `ray` with t > 0.
+std::string ProbeRayJson(const Scene *scene, const RenderSettings *settings, const Ray *ray);
+
+// The JSON line for a probe line that could not be read.
+std::string ProbeErrorJson(const std::string &message);
+
+// The JSON ray tree of pixel (x, y)'s centre ray.
+std::string PixelTreeJson(const Scene *scene, const RenderSettings *settings, int x, int y);
+
+// ---- views.cpp: debug views -----------------------------------------------------------------
+
+enum ViewKind { VIEW_NORMAL, VIEW_DEPTH, VIEW_ID, VIEW_COST, VIEW_SHADOW };
+
+// Looks up a view by its command-line name; false if there is none.
+bool FindView(const std::string &name, ViewKind *view);
+
+// Renders a debug view of the primary hits instead of the lit image.
+void RenderView(const Scene *scene, const RenderSettings *settings, ViewKind view, Image *image);
 
 // ---- scene_default.cpp, scene_test.cpp: the built-in scenes ----------------------------------
 

@@ -1,7 +1,8 @@
-// render.cpp -- the camera and the render loop.
+// render.cpp -- the cameras and the render loop.
 //
-// The assignment handout's GetRay(Perspective, vec2, Ray*), one ray per pixel through its centre
-// (or a regular grid of samples inside it), and the loop over all pixels on all cores. Each pixel
+// The assignment handout's GetRay(Perspective, vec2, Ray*), the second handout's screen camera
+// (and lookat, turned into it), one ray per pixel through its centre (or a regular grid of
+// samples inside it), and the loop over all pixels on all cores. Each pixel
 // is computed the same way whichever thread takes it, so the image never depends on the thread
 // count; threads take whole rows from a shared counter, so no core waits while work remains.
 #include "ray.h"
@@ -25,6 +26,51 @@ void GetRay(Perspective p, vec2 screenCoord, Ray *ray) {
 }
 
 // round(clamp(c, 0, 1) * 255); a NaN (which no shading path should produce) becomes 0.
+// The second handout's screen: pixel centres l + (i + .5)/W h + (j + .5)/H v with j counted
+// from the bottom; an image row y counts from the top, so the vertical fraction is (H - y) / H.
+void GetScreenRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray) {
+    real across = screenCoord.x / width, up = (height - screenCoord.y) / height;
+    vec3 onScreen = camera->lowerLeft + across * camera->horizontal + up * camera->vertical;
+    ray->origin = camera->eye;
+    ray->dir = onScreen - camera->eye;
+}
+
+void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray) {
+    if (camera->kind == CAMERA_PERSPECTIVE)
+        GetRay(camera->perspective, screenCoord, ray);
+    else
+        GetScreenRay(camera, width, height, screenCoord, ray);
+}
+
+// An orthonormal frame at the eye: w points back from the view, u right, v up (FCG §4.3). The
+// screen stands one unit in front of the eye, tan(fov / 2) high above the centre, and as wide as
+// the image's aspect ratio makes it (square pixels).
+bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen) {
+    vec3 back = lookAt->from - lookAt->to;
+    vec3 right = Cross(lookAt->up, back);
+    real fov = lookAt->fovDegrees;
+    if (!(Dot(back, back) > 0) || !(Dot(right, right) > 0) || !(fov > 0 && fov < 180))
+        return false;
+    vec3 w = Normalize(back), u = Normalize(right), v = Cross(w, u);
+    real halfHeight = std::tan(fov * real(M_PI / 360)), halfWidth = halfHeight * width / height;
+    *screen = *lookAt;
+    screen->kind = CAMERA_SCREEN;
+    screen->eye = lookAt->from;
+    screen->lowerLeft = lookAt->from - w - halfWidth * u - halfHeight * v;
+    screen->horizontal = (2 * halfWidth) * u;
+    screen->vertical = (2 * halfHeight) * v;
+    return true;
+}
+
+void PlanRender(const Scene *scene, RenderSettings *settings) {
+    PlanEffects(scene, settings, &settings->effects);
+    settings->camera = scene->camera;
+    settings->camera.perspective.widthPixels = settings->width;
+    settings->camera.perspective.heightPixels = settings->height;
+    if (scene->camera.kind == CAMERA_LOOKAT) // checked when the scene was read
+        LookAtToScreen(&scene->camera, settings->width, settings->height, &settings->camera);
+}
+
 uint8_t ToByte(real c) {
     if (!(c > 0))
         return 0;
@@ -50,20 +96,31 @@ static vec2 GridSample(int s, int n) {
     return {(real(s - first) + real(0.5)) / count, (real(row) + real(0.5)) / rows};
 }
 
+static void AddStats(const RayStats *from, RayStats *to) {
+    to->primary += from->primary;
+    to->shadow += from->shadow;
+    to->reflection += from->reflection;
+    to->refraction += from->refraction;
+    to->specularTerms += from->specularTerms;
+}
+
+vec2 SamplePosition(int i, int j, int s, int n) {
+    vec2 offset = n == 1 ? vec2{real(0.5), real(0.5)} : GridSample(s, n);
+    return {i + offset.x, j + offset.y};
+}
+
 color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
                   RayStats *stats) {
-    Perspective camera = scene->camera;
-    camera.widthPixels = settings->width;
-    camera.heightPixels = settings->height;
+    TraceLog log = {RayStats{0, 0, 0, 0, 0}, nullptr, -1};
     color sum = {0, 0, 0};
     int n = settings->samplesPerPixel;
     for (int s = 0; s < n; s++) {
-        vec2 offset = n == 1 ? vec2{real(0.5), real(0.5)} : GridSample(s, n);
         Ray ray;
-        GetRay(camera, {i + offset.x, j + offset.y}, &ray);
-        stats->primary++;
-        sum = sum + TraceRay(scene, settings, &ray, 1, stats);
+        GetCameraRay(&settings->camera, settings->width, settings->height,
+                     SamplePosition(i, j, s, n), &ray);
+        sum = sum + TraceRay(scene, settings, RAY_PRIMARY, &ray, 1, &log);
     }
+    AddStats(&log.stats, stats);
     return (real(1) / n) * sum;
 }
 
@@ -85,13 +142,6 @@ struct RowQueue {
     std::atomic<uint64_t> raysCast{0}; // for the progress line only
 };
 
-static void AddStats(const RayStats *from, RayStats *to) {
-    to->primary += from->primary;
-    to->shadow += from->shadow;
-    to->reflection += from->reflection;
-    to->refraction += from->refraction;
-}
-
 // Takes the next row from the queue and renders it; false when no rows are left. The row counts
 // its rays in a local RayStats, added to the thread's once per row: counters that two threads
 // write on every ray would share a cache line and slow both down.
@@ -100,7 +150,7 @@ static bool TakeRow(const Scene *scene, const RenderSettings *settings, RowQueue
     int j = queue->nextRow.fetch_add(1);
     if (j >= settings->height)
         return false;
-    RayStats row = {0, 0, 0, 0};
+    RayStats row = {0, 0, 0, 0, 0};
     RenderRow(scene, settings, j, image, &row);
     AddStats(&row, stats);
     queue->raysCast.fetch_add(row.primary + row.shadow + row.reflection + row.refraction);
@@ -129,7 +179,7 @@ void Render(const Scene *scene, const RenderSettings *settings, Image *image, Ra
     image->height = settings->height;
     image->pixels.assign((size_t)settings->width * settings->height * 3, 0);
     int threads = std::max(1, std::min(settings->threads, settings->height));
-    std::vector<RayStats> perThread(threads, RayStats{0, 0, 0, 0});
+    std::vector<RayStats> perThread(threads, RayStats{0, 0, 0, 0, 0});
     RowQueue queue;
     std::vector<std::thread> workers;
     for (int k = 1; k < threads; k++)

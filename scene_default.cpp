@@ -6,13 +6,14 @@
 #include "ray.h"
 
 void BuildDefaultScene(Scene *scene) {
+    InitScene(scene); // 512 x 512, camera perspective 0 0 0 2 2, ambient 0.2, floor, depth 10
     enum { MIRROR, RED, BLUE, WHITE };
-    // name      diffuse      mirror
+    // name      diffuse     ambient     ks n  mirror ior
     scene->materials = {
-        {"mirror", {1, 1, 1}, 1},
-        {"red", {1, 0, 0}, 0},
-        {"blue", {0, 0, 1}, 0},
-        {"white", {1, 1, 1}, 0},
+        {"mirror", {1, 1, 1}, {1, 1, 1}, 0, 1, 1, 0},
+        {"red", {1, 0, 0}, {1, 0, 0}, 0, 1, 0, 0},
+        {"blue", {0, 0, 1}, {0, 0, 1}, 0, 1, 0, 0},
+        {"white", {1, 1, 1}, {1, 1, 1}, 0, 1, 0, 0},
     };
     // center          radius  material
     scene->spheres = {
@@ -32,9 +33,4 @@ void BuildDefaultScene(Scene *scene) {
     scene->lights = {
         {{3, 5, -15}, {1, 1, 1}},
     };
-    // eye        distance width  pixels
-    scene->camera = {{0, 0, 0}, 2, 2, 512, 512};
-    scene->ambient = 0.2;
-    scene->background = {0, 0, 0};
-    scene->depth = 10;
 }

@@ -23,19 +23,20 @@ static void AddCheckerFloor(Scene *scene, real x0, real z0, real x1, real z1, re
 }
 
 void BuildTestScene(Scene *scene) {
+    InitScene(scene);
     enum { TINTED_MIRROR, MIRROR, GREEN, GOLD, SLATE, IVORY, ORANGE, PLUM, BRICK, TEAL };
-    // name             diffuse             mirror
+    // name             diffuse             ambient             ks n  mirror ior
     scene->materials = {
-        {"tinted_mirror", {0.6, 0.8, 0.9}, 0.85},
-        {"mirror", {1, 1, 1}, 1},
-        {"green", {0.2, 0.8, 0.3}, 0},
-        {"gold", {1, 0.8, 0.25}, 0.35},
-        {"slate", {0.25, 0.3, 0.4}, 0},
-        {"ivory", {0.95, 0.92, 0.85}, 0},
-        {"orange", {1, 0.5, 0.1}, 0},
-        {"plum", {0.6, 0.3, 0.7}, 0},
-        {"brick", {0.75, 0.35, 0.3}, 0},
-        {"teal", {0.2, 0.55, 0.6}, 0},
+        {"tinted_mirror", {0.6, 0.8, 0.9}, {0.6, 0.8, 0.9}, 0, 1, 0.85, 0},
+        {"mirror", {1, 1, 1}, {1, 1, 1}, 0, 1, 1, 0},
+        {"green", {0.2, 0.8, 0.3}, {0.2, 0.8, 0.3}, 0, 1, 0, 0},
+        {"gold", {1, 0.8, 0.25}, {1, 0.8, 0.25}, 0, 1, 0.35, 0},
+        {"slate", {0.25, 0.3, 0.4}, {0.25, 0.3, 0.4}, 0, 1, 0, 0},
+        {"ivory", {0.95, 0.92, 0.85}, {0.95, 0.92, 0.85}, 0, 1, 0, 0},
+        {"orange", {1, 0.5, 0.1}, {1, 0.5, 0.1}, 0, 1, 0, 0},
+        {"plum", {0.6, 0.3, 0.7}, {0.6, 0.3, 0.7}, 0, 1, 0, 0},
+        {"brick", {0.75, 0.35, 0.3}, {0.75, 0.35, 0.3}, 0, 1, 0, 0},
+        {"teal", {0.2, 0.55, 0.6}, {0.2, 0.55, 0.6}, 0, 1, 0, 0},
     };
     // center              radius  material
     scene->spheres = {
@@ -66,8 +67,5 @@ void BuildTestScene(Scene *scene) {
         {{2.5, 3, -8}, {0.45, 0.5, 0.7}},
     };
     // eye           distance width  pixels
-    scene->camera = {{0, 0.8, 0}, 1.4, 2, 512, 512};
-    scene->ambient = 0.2;
-    scene->background = {0, 0, 0};
-    scene->depth = 10;
+    scene->camera.perspective = {{0, 0.8, 0}, 1.4, 2, 512, 512};
 }

@@ -1,34 +1,81 @@
 // shade.cpp -- what colour a ray brings back: lighting and the chain of rays, nothing else.
 //
-// The assignment handout's diffuse shading with an ambient floor, hard shadows from point lights
-// and mirror reflection, at most `depth` rays in a chain (then black), the background on a miss.
-// Every ray kind asks the scene the same two questions of geometry.cpp: FindNearestHit, AnyHit.
+// The assignment handout's diffuse shading with an ambient floor, hard shadows and mirrors; the
+// second handout's Phong lighting; the journal's refraction by Snell's law with Fresnel
+// weighting. At most `depth` rays in a chain (then black), the background on a miss. Every ray
+// asks the scene one of two questions of geometry.cpp: FindNearestHit or AnyHit.
 #include "ray.h"
+
+#include <algorithm>
+
+static bool MaterialIsUsed(const Scene *scene, int material) {
+    for (const Sphere &s : scene->spheres)
+        if (s.material == material)
+            return true;
+    for (const Triangle &t : scene->triangles)
+        if (t.material == material)
+            return true;
+    return false;
+}
+
+void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects) {
+    bool shapes = !scene->spheres.empty() || !scene->triangles.empty();
+    bool lights = !scene->lights.empty();
+    *effects = Effects{lights && shapes, false, false, false, settings->samplesPerPixel > 1};
+    for (int k = 0; k < (int)scene->materials.size(); k++) {
+        const Material *m = &scene->materials[k];
+        if (!MaterialIsUsed(scene, k))
+            continue;
+        bool chain = settings->depth > 1; // room for a ray after the primary one
+        effects->reflection = effects->reflection || (chain && (m->mirror > 0 || m->ior > 0));
+        effects->refraction = effects->refraction || (chain && m->ior > 0);
+        effects->specular =
+            effects->specular || (scene->shading == SHADING_PHONG && lights && m->specular > 0);
+    }
+}
+
+// Adds a node for `ray` to the ray tree, if one is being recorded; returns its index or -1.
+static int RecordRay(RayKind kind, const Ray *ray, TraceLog *log) {
+    if (!log->tree)
+        return -1;
+    RayNode node = {kind, *ray, false, {}, {0, 0, 0}, log->current};
+    log->tree->push_back(node);
+    return (int)log->tree->size() - 1;
+}
 
 // Whether the segment from the hit point to the light is free of shapes. The shadow ray runs
 // from a safe origin (OffsetRayOrigin) with dir = light - origin, so t = 1 is the light itself
 // and the open interval (0, 1) holds every possible blocker, however far away the light is.
+// Without shapes that could block (Effects), no ray is needed at all.
 static bool LightIsVisible(const Scene *scene, const RenderSettings *settings, const RayHit *hit,
-                           vec3 lightPosition, RayStats *stats) {
+                           const Light *light, TraceLog *log) {
+    if (!settings->effects.shadows)
+        return true;
     Ray shadow;
-    shadow.origin = OffsetRayOrigin(hit, lightPosition - hit->point);
-    shadow.dir = lightPosition - shadow.origin;
-    stats->shadow++;
-    return !AnyHit(scene, settings->triangleMethod, &shadow, 0, 1);
+    shadow.origin = OffsetRayOrigin(hit, light->position - hit->point);
+    shadow.dir = light->position - shadow.origin;
+    log->stats.shadow++;
+    if (!log->tree)
+        return !AnyHit(scene, settings->triangleMethod, &shadow, 0, 1);
+
+    // Recording a ray tree: find the nearest blocker, so the tree can show which shape it is
+    int node = RecordRay(RAY_SHADOW, &shadow, log);
+    RayNode *n = &(*log->tree)[node];
+    n->hit = FindNearestHit(scene, settings->triangleMethod, &shadow, 0, 1, &n->record);
+    n->light = n->hit ? color{0, 0, 0} : light->intensity;
+    return !n->hit;
 }
 
-// The handout's lighting rule (`shading floor`): colour = kd * max(ambient, S), where S sums
-// I * (N.L) over the lights in front of the surface that no shape hides. A light behind the
-// surface (N.L <= 0) contributes nothing and costs no shadow ray (second handout).
-static color LocalColor(const Scene *scene, const RenderSettings *settings, const RayHit *hit,
-                        const Material *m, RayStats *stats) {
+// The assignment handout's rule (`shading floor`): kd * max(ambient, S), where S sums I (N.L)
+// over the lights in front of the surface that no shape hides. A light behind the surface
+// (N.L <= 0) contributes nothing and costs no shadow ray (second handout).
+static color FloorColor(const Scene *scene, const RenderSettings *settings, const RayHit *hit,
+                        const Material *m, TraceLog *log) {
     color sum = {0, 0, 0};
     for (const Light &light : scene->lights) {
         vec3 toLight = light.position - hit->point;
         real nDotL = Dot(hit->normal, toLight);
-        if (!(nDotL > 0))
-            continue;
-        if (!LightIsVisible(scene, settings, hit, light.position, stats))
+        if (!(nDotL > 0) || !LightIsVisible(scene, settings, hit, &light, log))
             continue;
         sum = sum + (nDotL / Length(toLight)) * light.intensity;
     }
@@ -36,35 +83,142 @@ static color LocalColor(const Scene *scene, const RenderSettings *settings, cons
     return m->diffuse * Max(floor, sum);
 }
 
-// Mirror reflection of the incoming direction about the normal: r = d - 2 (d.N) N (handout).
-// r has the length of d; only its direction matters to the next ray.
-static color ReflectedColor(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                            const RayHit *hit, int rayNumber, RayStats *stats) {
-    Ray reflected;
-    reflected.dir = ray->dir - (2 * Dot(ray->dir, hit->normal)) * hit->normal;
-    reflected.origin = OffsetRayOrigin(hit, reflected.dir);
-    stats->reflection++;
-    return TraceRay(scene, settings, &reflected, rayNumber + 1, stats);
-}
-
-// Mixes the local colour with the reflected one: (1 - K) local + K reflected for `mirror K`.
-// A perfect mirror (K = 1) does not light its own surface, so it casts no shadow rays; the chain
-// stops with black once `depth` rays have been cast.
-static color ShadeHit(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                      const RayHit *hit, int rayNumber, RayStats *stats) {
-    const Material *m = &scene->materials[hit->material];
-    color result = {0, 0, 0};
-    if (m->mirror < 1)
-        result = (1 - m->mirror) * LocalColor(scene, settings, hit, m, stats);
-    if (m->mirror > 0 && rayNumber < settings->depth)
-        result = result + m->mirror * ReflectedColor(scene, settings, ray, hit, rayNumber, stats);
+// The second handout's Phong lighting (`shading phong`):
+//   ka Ia + sum over visible lights with N.L > 0 of  Ii (kd (N.L) + ks max(0, R.V)^n),
+// R = -L + 2 (N.L) N the light's mirror direction, V toward the viewer, all unit vectors.
+// The N.L > 0 gate keeps a light below the horizon from making a highlight (HARD_CASES PH-1);
+// max(0, R.V) before pow keeps a fractional n from meeting a negative base (NaN, PH-2).
+static color PhongColor(const Scene *scene, const RenderSettings *settings, const Ray *ray,
+                        const RayHit *hit, const Material *m, TraceLog *log) {
+    color result = scene->ambient * m->ambient;
+    vec3 n = hit->normal, v = -Normalize(ray->dir);
+    bool specular = settings->effects.specular && m->specular > 0;
+    for (const Light &light : scene->lights) {
+        vec3 l = Normalize(light.position - hit->point);
+        real nDotL = Dot(n, l);
+        if (!(nDotL > 0) || !LightIsVisible(scene, settings, hit, &light, log))
+            continue;
+        color term = nDotL * m->diffuse;
+        if (specular) {
+            vec3 r = (2 * nDotL) * n - l;
+            real highlight = m->specular * std::pow(std::max(real(0), Dot(r, v)), m->shininess);
+            term = term + color{highlight, highlight, highlight};
+            log->stats.specularTerms++;
+        }
+        result = result + light.intensity * term;
+    }
     return result;
 }
 
-color TraceRay(const Scene *scene, const RenderSettings *settings, const Ray *ray, int rayNumber,
-               RayStats *stats) {
+// Snell's law, n1 sin(i) = n2 sin(t), for unit d arriving against the unit normal n (d.n <= 0)
+// and eta = n1 / n2: t = eta d + (eta cos(i) - cos(t)) n (Shirley & Marschner, FCG §13.1).
+// Returns false, and leaves *t alone, for total internal reflection (sin(t) >= 1). The cosine is
+// clamped to [0, 1] because d.n of unit vectors can round past 1 (HARD_CASES REF-4).
+bool Refract(vec3 d, vec3 n, real eta, vec3 *t) {
+    real cosI = std::min(real(1), std::max(real(0), -Dot(d, n)));
+    real sin2T = eta * eta * (1 - cosI * cosI);
+    if (sin2T >= 1)
+        return false;
+    real cosT = std::sqrt(1 - sin2T);
+    *t = eta * d + (eta * cosI - cosT) * n;
+    return true;
+}
+
+// The exact Fresnel reflectance of a clear dielectric for unpolarised light, the average of the
+// s- and p-polarised amplitudes squared (Hecht, Optics §4.6.2; pbrt-v4 §9.5), for the cosine of
+// the incident angle and eta = n1 / n2. 1 under total internal reflection. Exact rather than
+// Schlick's approximation, because Schlick is only right on the side of the smaller index:
+// evaluated inside glass it misses the rise to 1 at the critical angle (HARD_CASES REF-3).
+real FresnelReflectance(real cosI, real eta) {
+    cosI = std::min(real(1), std::max(real(0), cosI));
+    real sin2T = eta * eta * (1 - cosI * cosI);
+    if (sin2T >= 1)
+        return 1;
+    real cosT = std::sqrt(1 - sin2T);
+    real rs = (eta * cosI - cosT) / (eta * cosI + cosT);
+    real rp = (cosI - eta * cosT) / (cosI + eta * cosT);
+    return (rs * rs + rp * rp) / 2;
+}
+
+// Sends the next ray of the chain from the hit point in direction dir.
+static color FollowRay(const Scene *scene, const RenderSettings *settings, RayKind kind,
+                       const RayHit *hit, vec3 dir, int rayNumber, TraceLog *log) {
+    Ray next = {OffsetRayOrigin(hit, dir), dir};
+    return TraceRay(scene, settings, kind, &next, rayNumber + 1, log);
+}
+
+// Clear glass: Fresnel's share R of the reflected ray plus 1 - R of the refracted one. Entering
+// (the ray arrives on the outward side) eta = 1 / ior, leaving eta = ior; under total internal
+// reflection R = 1 and no refracted ray is cast.
+static color GlassColor(const Scene *scene, const RenderSettings *settings, const Ray *ray,
+                        const RayHit *hit, const Material *m, int rayNumber, TraceLog *log) {
+    vec3 d = Normalize(ray->dir), n = hit->normal;
+    real eta = hit->frontFace ? 1 / m->ior : m->ior;
+    real reflectance = FresnelReflectance(-Dot(d, n), eta);
+    vec3 mirrored = d - (2 * Dot(d, n)) * n;
+    color result =
+        reflectance * FollowRay(scene, settings, RAY_REFLECTION, hit, mirrored, rayNumber, log);
+    vec3 refracted;
+    if (reflectance < 1 && Refract(d, n, eta, &refracted))
+        result = result + (1 - reflectance) * FollowRay(scene, settings, RAY_REFRACTION, hit,
+                                                        refracted, rayNumber, log);
+    return result;
+}
+
+// The surface's own colour: glass, or lit by the scene's lighting rule.
+static color SurfaceColor(const Scene *scene, const RenderSettings *settings, const Ray *ray,
+                          const RayHit *hit, const Material *m, int rayNumber, TraceLog *log) {
+    if (m->ior > 0)
+        return rayNumber < settings->depth
+                   ? GlassColor(scene, settings, ray, hit, m, rayNumber, log)
+                   : color{0, 0, 0};
+    if (scene->shading == SHADING_PHONG)
+        return PhongColor(scene, settings, ray, hit, m, log);
+    return FloorColor(scene, settings, hit, m, log);
+}
+
+// Mixes the surface's colour with the mirror image: (1 - K) own + K reflected for `mirror K`.
+// A perfect mirror (K = 1) never shows its own colour, so it casts no shadow rays; a chain that
+// has used up `depth` rays ends in black.
+static color ShadeHit(const Scene *scene, const RenderSettings *settings, const Ray *ray,
+                      const RayHit *hit, int rayNumber, TraceLog *log) {
+    const Material *m = &scene->materials[hit->material];
+    color result = {0, 0, 0};
+    if (m->mirror < 1)
+        result = (1 - m->mirror) * SurfaceColor(scene, settings, ray, hit, m, rayNumber, log);
+    if (m->mirror > 0 && rayNumber < settings->depth) {
+        // Mirror reflection of the incoming direction: r = d - 2 (d.N) N (handout)
+        vec3 r = ray->dir - (2 * Dot(ray->dir, hit->normal)) * hit->normal;
+        result =
+            result + m->mirror * FollowRay(scene, settings, RAY_REFLECTION, hit, r, rayNumber, log);
+    }
+    return result;
+}
+
+static void CountRay(RayKind kind, RayStats *stats) {
+    uint64_t *counter[] = {&stats->primary, &stats->shadow, &stats->reflection, &stats->refraction};
+    (*counter[kind])++;
+}
+
+color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
+               int rayNumber, TraceLog *log) {
+    CountRay(kind, &log->stats);
+    int node = RecordRay(kind, ray, log);
     RayHit hit;
-    if (!FindNearestHit(scene, settings->triangleMethod, ray, 0, kInfinity, &hit))
-        return scene->background;
-    return ShadeHit(scene, settings, ray, &hit, rayNumber, stats);
+    bool found = FindNearestHit(scene, settings->triangleMethod, ray, 0, kInfinity, &hit);
+    color result = scene->background;
+    if (found) {
+        int parent = log->current;
+        log->current = node;
+        result = ShadeHit(scene, settings, ray, &hit, rayNumber, log);
+        log->current = parent;
+    }
+    if (node >= 0) { // the tree may have grown (and moved) during the recursion
+        RayNode *n = &(*log->tree)[node];
+        n->hit = found;
+        if (found)
+            n->record = hit;
+        n->light = result;
+    }
+    return result;
 }

@@ -29,6 +29,10 @@ const double kRelTol = 64 * std::numeric_limits<real>::epsilon();
 // A default render configuration for tests: the scene's size, 1 spp, its depth, one thread.
 RenderSettings TestSettings(const Scene *scene);
 
+// A matte material of colour kd, and a mirror reflecting the fraction k (test_shade.cpp).
+Material Matte(const char *name, color kd);
+Material Mirror(const char *name, real k);
+
 // The program under test for command-line checks: $RAY, or ./ray (./ray_float in the float build).
 std::string RayProgram();
 

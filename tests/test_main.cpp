@@ -25,13 +25,14 @@ std::string DescribeNear(double actual, double expected, double tolerance) {
 
 RenderSettings TestSettings(const Scene *scene) {
     RenderSettings s;
-    s.width = scene->camera.widthPixels;
-    s.height = scene->camera.heightPixels;
+    s.width = scene->width;
+    s.height = scene->height;
     s.samplesPerPixel = 1;
     s.depth = scene->depth;
     s.threads = 1;
     s.triangleMethod = TRIANGLE_WATERTIGHT;
     s.showProgress = false;
+    PlanRender(scene, &s);
     return s;
 }
 

@@ -75,7 +75,7 @@ struct BadRun {
 
 static const BadRun kBadRuns[] = {
     {"--bogus", 2, "unknown option"},
-    {"--size", 2, "needs a value"},
+    {"--size", 2, "needs 1 value"},
     {"--size 0", 2, "between 1 and 16384"},
     {"--size 16385", 2, "between 1 and 16384"},
     {"--size 12x", 2, "not an integer"},

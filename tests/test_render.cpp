@@ -17,7 +17,7 @@ static void CheckRay(const Perspective &p, real sx, real sy, vec3 expected, cons
 void TestCamera() {
     Scene scene;
     BuildDefaultScene(&scene);
-    Perspective p = scene.camera;
+    Perspective p = scene.camera.perspective;
     // Top-left pixel (0, 0): (0.5 - 256)/256 = -0.998046875 across, +0.998046875 up
     CheckRay(p, 0.5, 0.5, {-0.998046875, 0.998046875, -2}, "top-left pixel (0, 0)");
     // Bottom-right pixel (511, 511): the mirror image
@@ -62,7 +62,7 @@ void TestAssignmentImage() {
               scene.spheres.size() == 3 && scene.triangles.size() == 5 && scene.lights.size() == 1,
           "assignment scene: 512 x 512, depth 10, 3 spheres, 5 triangles, 1 light");
     for (const PixelPrediction &p : kAssignmentPixels) {
-        RayStats stats = {0, 0, 0, 0};
+        RayStats stats = {0, 0, 0, 0, 0};
         color c = RenderPixel(&scene, &settings, p.i, p.j, &stats);
         uint8_t got[3] = {ToByte(c.x), ToByte(c.y), ToByte(c.z)};
         CHECK(got[0] == p.rgb[0] && got[1] == p.rgb[1] && got[2] == p.rgb[2],
@@ -73,7 +73,7 @@ void TestAssignmentImage() {
 
     // The whole image: the same bytes for 1 and 2 threads, and the rays the scene needs
     Image one, two;
-    RayStats stats1 = {0, 0, 0, 0}, stats2 = {0, 0, 0, 0};
+    RayStats stats1 = {0, 0, 0, 0, 0}, stats2 = {0, 0, 0, 0, 0};
     Render(&scene, &settings, &one, &stats1);
     settings.threads = 2;
     Render(&scene, &settings, &two, &stats2);
@@ -87,7 +87,8 @@ void TestAssignmentImage() {
     // 4 samples per pixel: exactly 4 primary rays per pixel
     settings.samplesPerPixel = 4;
     settings.width = settings.height = 64;
-    RayStats stats4 = {0, 0, 0, 0};
+    PlanRender(&scene, &settings);
+    RayStats stats4 = {0, 0, 0, 0, 0};
     Render(&scene, &settings, &one, &stats4);
     CHECK(stats4.primary == 64 * 64 * 4, "--spp 4 on 64 x 64: exactly 16384 primary rays");
 }

@@ -5,23 +5,27 @@
 // them change from test to test; each colour is worked out from kd * max(ambient, N.L).
 #include "test.h"
 
+// A matte material of grey level kd, or a mirror reflecting the fraction k.
+Material Matte(const char *name, color kd) { return {name, kd, kd, 0, 1, 0, 0}; }
+Material Mirror(const char *name, real k) { return {name, {1, 1, 1}, {1, 1, 1}, 0, 1, k, 0}; }
+
 static Scene FloorScene(vec3 lightPosition, real diffuse) {
     Scene scene;
-    scene.materials = {{"floor", {diffuse, diffuse, diffuse}, 0}, {"mirror", {1, 1, 1}, 1}};
+    InitScene(&scene); // ambient 0.2, floor shading, black background, depth 10
+    scene.materials = {Matte("floor", {diffuse, diffuse, diffuse}), Mirror("mirror", 1)};
     scene.triangles = {{{-100, 0, 100}, {100, 0, 100}, {0, 0, -100}, 0}};
     scene.lights = {{lightPosition, {1, 1, 1}}};
-    scene.camera = {{0, 5, 0}, 1, 1, 1, 1};
-    scene.ambient = real(0.2);
-    scene.background = {0, 0, 0};
-    scene.depth = 10;
     return scene;
 }
 
+// Traces one primary ray, with the effects planned for the scene as a render would.
 static color Shade(const Scene *scene, vec3 origin, vec3 dir, RayStats *stats) {
     RenderSettings settings = TestSettings(scene);
     Ray ray = {origin, dir};
-    *stats = RayStats{0, 0, 0, 0};
-    return TraceRay(scene, &settings, &ray, 1, stats);
+    TraceLog log = {RayStats{0, 0, 0, 0, 0}, nullptr, -1};
+    color c = TraceRay(scene, &settings, RAY_PRIMARY, &ray, 1, &log);
+    *stats = log.stats;
+    return c;
 }
 
 static void TestLit() {
@@ -76,7 +80,7 @@ static void TestMirror() {
     // A perfect mirror floor reflects the ray going down-right at 45 degrees up into a red
     // wall (plane x = 10, facing -x) lit head-on by a light at (5, 5, 0): N.L = 1 at (10, 5, 0)
     Scene scene = FloorScene({5, 5, 0}, 1);
-    scene.materials.push_back({"red", {1, 0, 0}, 0});
+    scene.materials.push_back(Matte("red", {1, 0, 0}));
     scene.triangles[0].material = 1; // the floor is now the mirror
     scene.triangles.push_back({{10, -100, -100}, {10, 100, 0}, {10, -100, 100}, 2});
     RayStats stats;

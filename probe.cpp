@@ -1,0 +1,115 @@
+// probe.cpp -- the handout's debugging advice as a feature: fire one ray, read the hit.
+//
+// `--ray` and `--rays` print the nearest hit of a ray as one JSON line; `--pixel` prints the whole
+// tree of rays behind one pixel (SPEC section 4). Numbers are printed with 17 significant digits,
+// so they read back exactly.
+#include "ray.h"
+
+#include <cstdio>
+
+static std::string Number(real v) {
+    char text[32];
+    snprintf(text, sizeof text, "%.17g", (double)v);
+    return text;
+}
+
+static std::string Triple(vec3 v) {
+    return "[" + Number(v.x) + "," + Number(v.y) + "," + Number(v.z) + "]";
+}
+
+// A JSON string; bytes that are not printable ASCII are escaped, so the output is always valid.
+static std::string Quoted(const std::string &s) {
+    std::string out = "\"";
+    for (unsigned char c : s) {
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += (char)c;
+        } else if (c < 32 || c > 126) {
+            char escape[8];
+            snprintf(escape, sizeof escape, "\\u%04x", c);
+            out += escape;
+        } else {
+            out += (char)c;
+        }
+    }
+    return out + "\"";
+}
+
+static std::string HitJson(const Scene *scene, const RayHit *hit) {
+    return "{\"hit\":true,\"t\":" + Number(hit->t) + ",\"point\":" + Triple(hit->point) +
+           ",\"normal\":" + Triple(hit->normal) +
+           ",\"front\":" + (hit->frontFace ? "true" : "false") + ",\"shape\":\"" +
+           (hit->shape == SHAPE_SPHERE ? "sphere" : "triangle") +
+           "\",\"index\":" + std::to_string(hit->index) +
+           ",\"material\":" + Quoted(scene->materials[hit->material].name) + "}";
+}
+
+bool ParseProbeLine(const std::string &line, Ray *ray, bool *blank, std::string *error) {
+    std::vector<std::string> tokens;
+    std::string current;
+    for (char c : line.substr(0, line.find('#'))) {
+        bool space = c == ' ' || c == '\t' || c == '\r' || c == '\n';
+        if (!space)
+            current += c;
+        if (space && !current.empty()) {
+            tokens.push_back(current);
+            current.clear();
+        }
+    }
+    if (!current.empty())
+        tokens.push_back(current);
+    *blank = tokens.empty();
+    if (*blank)
+        return true;
+    if (tokens.size() != 6) {
+        *error = "expected 6 numbers OX OY OZ DX DY DZ, found " + std::to_string(tokens.size()) +
+                 " values";
+        return false;
+    }
+    real v[6];
+    for (int k = 0; k < 6; k++)
+        if (!ParseReal(tokens[k], &v[k], error))
+            return false;
+    ray->origin = {v[0], v[1], v[2]};
+    ray->dir = {v[3], v[4], v[5]};
+    if (ray->dir.x == 0 && ray->dir.y == 0 && ray->dir.z == 0) {
+        *error = "direction is zero";
+        return false;
+    }
+    return true;
+}
+
+std::string ProbeErrorJson(const std::string &message) {
+    return "{\"error\":" + Quoted(message) + "}";
+}
+
+std::string ProbeRayJson(const Scene *scene, const RenderSettings *settings, const Ray *ray) {
+    RayHit hit;
+    if (!FindNearestHit(scene, settings->triangleMethod, ray, 0, kInfinity, &hit))
+        return "{\"hit\":false}";
+    return HitJson(scene, &hit);
+}
+
+// One node of the tree and, nested, every node whose parent it is.
+static std::string NodeJson(const Scene *scene, const std::vector<RayNode> &tree, int index) {
+    static const char *kKinds[] = {"primary", "shadow", "reflection", "refraction"};
+    const RayNode &n = tree[index];
+    std::string children;
+    for (int k = index + 1; k < (int)tree.size(); k++)
+        if (tree[k].parent == index)
+            children += (children.empty() ? "" : ",") + NodeJson(scene, tree, k);
+    return std::string("{\"kind\":\"") + kKinds[n.kind] + "\",\"origin\":" + Triple(n.ray.origin) +
+           ",\"dir\":" + Triple(n.ray.dir) +
+           ",\"hit\":" + (n.hit ? HitJson(scene, &n.record) : "null") +
+           ",\"color\":" + Triple(n.light) + ",\"children\":[" + children + "]}";
+}
+
+std::string PixelTreeJson(const Scene *scene, const RenderSettings *settings, int x, int y) {
+    std::vector<RayNode> tree;
+    TraceLog log = {RayStats{0, 0, 0, 0, 0}, &tree, -1};
+    Ray ray;
+    GetCameraRay(&settings->camera, settings->width, settings->height, SamplePosition(x, y, 0, 1),
+                 &ray);
+    TraceRay(scene, settings, RAY_PRIMARY, &ray, 1, &log);
+    return NodeJson(scene, tree, 0);
+}

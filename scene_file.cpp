@@ -1,0 +1,441 @@
+// scene_file.cpp -- reads scene files (SPEC section 3) into a Scene.
+//
+// One statement a line, `#` comments, tokens between spaces or tabs. Every statement is checked
+// as it is read, and the first problem ends the read with "FILE:LINE: message", the way a
+// compiler reports it. Nothing here prints; the caller decides what to do with the message.
+#include "ray.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <sys/stat.h>
+
+// Limits that keep a hostile or mistaken file from exhausting memory: a file is read whole, and
+// the brute-force nearest-hit loop is only sensible for scenes far smaller than this anyway.
+static const long kMaxFileBytes = 256L << 20;
+static const size_t kMaxObjects = 1000000; // shapes, lights and materials together
+
+// One statement being read, for its handler and for error messages.
+struct Statement {
+    const char *file;
+    int line;
+    std::vector<std::string> tokens;
+};
+
+// What has been declared once already (a second one is an error).
+struct Declared {
+    bool size, camera, ambient, shading, background, depth;
+};
+
+void InitScene(Scene *scene) {
+    *scene = Scene();
+    scene->width = scene->height = 512;
+    scene->camera = Camera();
+    scene->camera.kind = CAMERA_PERSPECTIVE;
+    scene->camera.perspective = {{0, 0, 0}, 2, 2, 512, 512};
+    scene->shading = SHADING_FLOOR;
+    scene->ambient = real(0.2);
+    scene->background = {0, 0, 0};
+    scene->depth = 10;
+}
+
+// A token as it may be shown in a message: at most 40 characters, unprintable bytes as '?'.
+static std::string Shown(const std::string &token) {
+    std::string s = token.substr(0, 40);
+    for (char &c : s)
+        if ((unsigned char)c < 32 || (unsigned char)c > 126)
+            c = '?';
+    return "'" + s + (token.size() > 40 ? "...'" : "'");
+}
+
+static bool Fail(const Statement *st, const std::string &message, std::string *error) {
+    *error = std::string(st->file) + ":" + std::to_string(st->line) + ": " + message;
+    return false;
+}
+
+// Decimal digits with an optional sign, point and exponent: -2, +0.5, 1e-3, .5, 5.
+static bool LooksDecimal(const std::string &t) {
+    size_t k = 0, digits = 0;
+    if (k < t.size() && (t[k] == '+' || t[k] == '-'))
+        k++;
+    for (; k < t.size() && isdigit((unsigned char)t[k]); k++)
+        digits++;
+    if (k < t.size() && t[k] == '.')
+        for (k++; k < t.size() && isdigit((unsigned char)t[k]); k++)
+            digits++;
+    if (digits == 0)
+        return false;
+    if (k < t.size() && (t[k] == 'e' || t[k] == 'E')) {
+        k++;
+        if (k < t.size() && (t[k] == '+' || t[k] == '-'))
+            k++;
+        size_t start = k;
+        for (; k < t.size() && isdigit((unsigned char)t[k]); k++) {
+        }
+        if (k == start)
+            return false;
+    }
+    return k == t.size();
+}
+
+bool ParseReal(const std::string &token, real *value, std::string *error) {
+    if (!LooksDecimal(token)) {
+        *error = "not a decimal number: " + Shown(token);
+        return false;
+    }
+    double v = strtod(token.c_str(), nullptr);
+    if (!std::isfinite(v) || !std::isfinite((real)v)) {
+        *error = "number out of range: " + Shown(token);
+        return false;
+    }
+    *value = (real)v;
+    return true;
+}
+
+// Reads `count` numbers from tokens[first...]; the statement must hold exactly `total` tokens.
+static bool Numbers(const Statement *st, size_t first, int count, size_t total, real *out,
+                    std::string *error) {
+    const std::string &keyword = st->tokens[0];
+    if (st->tokens.size() < total)
+        return Fail(st,
+                    keyword + ": missing number(s): expected " + std::to_string(total - 1) +
+                        " values after " + keyword,
+                    error);
+    if (st->tokens.size() > total)
+        return Fail(st, keyword + ": extra value " + Shown(st->tokens[total]), error);
+    for (int k = 0; k < count; k++) {
+        std::string why;
+        if (!ParseReal(st->tokens[first + k], &out[k], &why))
+            return Fail(st, keyword + ": " + why, error);
+    }
+    return true;
+}
+
+static bool WholeNumber(const Statement *st, size_t index, int lo, int hi, int *out,
+                        std::string *error) {
+    const std::string &t = st->tokens[index];
+    size_t k = (t[0] == '+' || t[0] == '-') ? 1 : 0;
+    bool digits = k < t.size() && t.find_first_not_of("0123456789", k) == std::string::npos;
+    long v = digits && t.size() < 12 ? strtol(t.c_str(), nullptr, 10) : lo - 1L;
+    if (!digits)
+        return Fail(st, st->tokens[0] + ": not a whole number: " + Shown(t), error);
+    if (v < lo || v > hi)
+        return Fail(st,
+                    st->tokens[0] + " must be between " + std::to_string(lo) + " and " +
+                        std::to_string(hi) + ", not " + Shown(t),
+                    error);
+    *out = (int)v;
+    return true;
+}
+
+static bool CheckColor(const Statement *st, const char *what, color c, std::string *error) {
+    bool ok = c.x >= 0 && c.x <= 1 && c.y >= 0 && c.y <= 1 && c.z >= 0 && c.z <= 1;
+    return ok || Fail(st, std::string(what) + ": colour components must be in [0, 1]", error);
+}
+
+// A statement that may appear once: marks it, or reports the second one.
+static bool Once(const Statement *st, bool *seen, std::string *error) {
+    if (*seen)
+        return Fail(st, "second '" + st->tokens[0] + "' statement (only one is allowed)", error);
+    *seen = true;
+    return true;
+}
+
+static bool FindMaterial(const Statement *st, const Scene *scene, size_t index, int *material,
+                         std::string *error) {
+    const std::string &name = st->tokens[index];
+    for (size_t k = 0; k < scene->materials.size(); k++) {
+        if (scene->materials[k].name == name) {
+            *material = (int)k;
+            return true;
+        }
+    }
+    return Fail(st,
+                st->tokens[0] + ": material " + Shown(name) + " is not defined (define it above)",
+                error);
+}
+
+// A shape statement holds `numbers` numbers and then the name of its material.
+static bool ShapeArity(const Statement *st, size_t numbers, std::string *error) {
+    if (st->tokens.size() < numbers + 2)
+        return Fail(st,
+                    st->tokens[0] + ": expected " + std::to_string(numbers) +
+                        " numbers and a material name",
+                    error);
+    if (st->tokens.size() > numbers + 2)
+        return Fail(st, st->tokens[0] + ": extra value " + Shown(st->tokens[numbers + 2]), error);
+    return true;
+}
+
+static bool ReadSphere(const Statement *st, Scene *scene, std::string *error) {
+    real v[4];
+    Sphere s;
+    if (!ShapeArity(st, 4, error) || !Numbers(st, 1, 4, 6, v, error) ||
+        !FindMaterial(st, scene, 5, &s.material, error))
+        return false;
+    if (!(v[3] > 0))
+        return Fail(st, "sphere: radius must be > 0", error);
+    s.center = {v[0], v[1], v[2]};
+    s.radius = v[3];
+    scene->spheres.push_back(s);
+    return true;
+}
+
+static bool ReadTriangle(const Statement *st, Scene *scene, std::string *error) {
+    real v[9];
+    Triangle t;
+    if (!ShapeArity(st, 9, error) || !Numbers(st, 1, 9, 11, v, error) ||
+        !FindMaterial(st, scene, 10, &t.material, error))
+        return false;
+    t.a = {v[0], v[1], v[2]};
+    t.b = {v[3], v[4], v[5]};
+    t.c = {v[6], v[7], v[8]};
+    scene->triangles.push_back(t);
+    return true;
+}
+
+static bool ReadLight(const Statement *st, Scene *scene, std::string *error) {
+    real v[6] = {0, 0, 0, 1, 1, 1};
+    size_t total = st->tokens.size() <= 4 ? 4 : 7;
+    if (!Numbers(st, 1, (int)total - 1, total, v, error))
+        return false;
+    Light light = {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+    if (!CheckColor(st, "light", light.intensity, error))
+        return false;
+    scene->lights.push_back(light);
+    return true;
+}
+
+// `material NAME [diffuse R G B] [ambient R G B] [specular KS N] [mirror K] [glass IOR]`
+static bool ReadMaterial(const Statement *st, Scene *scene, std::string *error) {
+    if (st->tokens.size() < 2)
+        return Fail(st, "material: missing name", error);
+    Material m = {st->tokens[1], {1, 1, 1}, {1, 1, 1}, 0, 1, 0, 0};
+    for (const Material &other : scene->materials)
+        if (other.name == m.name)
+            return Fail(st, "material " + Shown(m.name) + " is defined twice", error);
+    bool ambientGiven = false;
+    std::string keysSeen;
+    for (size_t k = 2; k < st->tokens.size();) {
+        const std::string &key = st->tokens[k];
+        int count = key == "diffuse" || key == "ambient" ? 3
+                    : key == "specular"                  ? 2
+                    : key == "mirror" || key == "glass"  ? 1
+                                                         : 0;
+        if (count == 0)
+            return Fail(st,
+                        "material: unknown property " + Shown(key) +
+                            " (expected diffuse, ambient, specular, mirror or glass)",
+                        error);
+        if (keysSeen.find(" " + key + " ") != std::string::npos)
+            return Fail(st, "material: '" + key + "' given twice", error);
+        keysSeen += " " + key + " ";
+        real v[3];
+        for (int j = 0; j < count; j++) {
+            std::string why;
+            if (k + 1 + j >= st->tokens.size())
+                return Fail(st,
+                            "material: '" + key + "' needs " + std::to_string(count) + " number(s)",
+                            error);
+            if (!ParseReal(st->tokens[k + 1 + j], &v[j], &why))
+                return Fail(st, "material: " + key + ": " + why, error);
+        }
+        if (key == "diffuse" || key == "ambient") {
+            color c = {v[0], v[1], v[2]};
+            if (!CheckColor(st, key.c_str(), c, error))
+                return false;
+            (key == "diffuse" ? m.diffuse : m.ambient) = c;
+            ambientGiven = ambientGiven || key == "ambient";
+        } else if (key == "specular") {
+            if (!(v[0] >= 0) || !(v[1] >= 0))
+                return Fail(st, "material: specular KS and N must be >= 0", error);
+            m.specular = v[0];
+            m.shininess = v[1];
+        } else if (key == "mirror") {
+            if (!(v[0] >= 0 && v[0] <= 1))
+                return Fail(st, "material: mirror fraction must be in [0, 1]", error);
+            m.mirror = v[0];
+        } else {
+            if (!(v[0] > 0))
+                return Fail(st, "material: index of refraction must be > 0", error);
+            m.ior = v[0];
+        }
+        k += 1 + count;
+    }
+    if (!ambientGiven)
+        m.ambient = m.diffuse;
+    scene->materials.push_back(m);
+    return true;
+}
+
+static bool ReadCamera(const Statement *st, Scene *scene, std::string *error) {
+    if (st->tokens.size() < 2)
+        return Fail(st, "camera: expected perspective, screen or lookat", error);
+    const std::string &kind = st->tokens[1];
+    real v[12];
+    Camera c = Camera();
+    if (kind == "perspective") {
+        if (!Numbers(st, 2, 5, 7, v, error))
+            return false;
+        if (!(v[3] > 0) || !(v[4] > 0))
+            return Fail(st, "camera perspective: distance and width must be > 0", error);
+        c.kind = CAMERA_PERSPECTIVE;
+        c.perspective = {{v[0], v[1], v[2]}, v[3], v[4], 0, 0};
+    } else if (kind == "screen") {
+        if (!Numbers(st, 2, 12, 14, v, error))
+            return false;
+        c.kind = CAMERA_SCREEN;
+        c.eye = {v[0], v[1], v[2]};
+        c.lowerLeft = {v[3], v[4], v[5]};
+        c.horizontal = {v[6], v[7], v[8]};
+        c.vertical = {v[9], v[10], v[11]};
+        vec3 normal = Cross(c.horizontal, c.vertical);
+        if (!(Dot(normal, normal) > 0) || !IsFinite(normal))
+            return Fail(st, "camera screen: the edges h and v must be non-zero and not parallel",
+                        error);
+    } else if (kind == "lookat") {
+        if (!Numbers(st, 2, 10, 12, v, error))
+            return false;
+        c.kind = CAMERA_LOOKAT;
+        c.from = {v[0], v[1], v[2]};
+        c.to = {v[3], v[4], v[5]};
+        c.up = {v[6], v[7], v[8]};
+        c.fovDegrees = v[9];
+        Camera check;
+        if (!LookAtToScreen(&c, 1, 1, &check))
+            return Fail(st,
+                        "camera lookat: needs from != to, up not along the view, and a "
+                        "field of view between 0 and 180 degrees",
+                        error);
+    } else {
+        return Fail(
+            st, "camera: unknown kind " + Shown(kind) + " (expected perspective, screen or lookat)",
+            error);
+    }
+    scene->camera = c;
+    return true;
+}
+
+// One statement: checks it and adds what it says to the scene.
+static bool ReadStatement(const Statement *st, Scene *scene, Declared *declared,
+                          std::string *error) {
+    const std::string &k = st->tokens[0];
+    real v[3];
+    if (k == "sphere")
+        return ReadSphere(st, scene, error);
+    if (k == "triangle")
+        return ReadTriangle(st, scene, error);
+    if (k == "material")
+        return ReadMaterial(st, scene, error);
+    if (k == "light")
+        return ReadLight(st, scene, error);
+    if (k == "camera")
+        return Once(st, &declared->camera, error) && ReadCamera(st, scene, error);
+    if (k == "size") {
+        if (!Once(st, &declared->size, error) || !Numbers(st, 1, 0, 3, v, error))
+            return false;
+        return WholeNumber(st, 1, 1, 16384, &scene->width, error) &&
+               WholeNumber(st, 2, 1, 16384, &scene->height, error);
+    }
+    if (k == "depth")
+        return Once(st, &declared->depth, error) && Numbers(st, 1, 0, 2, v, error) &&
+               WholeNumber(st, 1, 1, 1000, &scene->depth, error);
+    if (k == "ambient") {
+        if (!Once(st, &declared->ambient, error) || !Numbers(st, 1, 1, 2, v, error))
+            return false;
+        scene->ambient = v[0];
+        return (v[0] >= 0 && v[0] <= 1) || Fail(st, "ambient must be in [0, 1]", error);
+    }
+    if (k == "background") {
+        if (!Once(st, &declared->background, error) || !Numbers(st, 1, 3, 4, v, error))
+            return false;
+        scene->background = {v[0], v[1], v[2]};
+        return CheckColor(st, "background", scene->background, error);
+    }
+    if (k == "shading") {
+        if (!Once(st, &declared->shading, error))
+            return false;
+        if (st->tokens.size() != 2 || (st->tokens[1] != "floor" && st->tokens[1] != "phong"))
+            return Fail(st, "shading: expected 'floor' or 'phong'", error);
+        scene->shading = st->tokens[1] == "phong" ? SHADING_PHONG : SHADING_FLOOR;
+        return true;
+    }
+    return Fail(st, "unknown keyword " + Shown(k), error);
+}
+
+// Splits a line into tokens at spaces and tabs, up to a `#`.
+static void Tokenize(const std::string &line, std::vector<std::string> *tokens) {
+    tokens->clear();
+    size_t k = 0, end = line.find('#');
+    if (end == std::string::npos)
+        end = line.size();
+    while (k < end) {
+        while (k < end && (line[k] == ' ' || line[k] == '\t'))
+            k++;
+        size_t start = k;
+        while (k < end && line[k] != ' ' && line[k] != '\t')
+            k++;
+        if (k > start)
+            tokens->push_back(line.substr(start, k - start));
+    }
+}
+
+bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
+                    std::string *error) {
+    InitScene(scene);
+    Declared declared = {};
+    Statement st = {fileName, 0, {}};
+    for (size_t start = 0; start < text.size();) {
+        size_t end = text.find('\n', start);
+        if (end == std::string::npos)
+            end = text.size();
+        std::string line = text.substr(start, end - start);
+        if (!line.empty() && line.back() == '\r') // Windows line endings
+            line.pop_back();
+        start = end + 1;
+        st.line++;
+        Tokenize(line, &st.tokens);
+        if (st.tokens.empty())
+            continue;
+        if (!ReadStatement(&st, scene, &declared, error))
+            return false;
+        size_t objects = scene->spheres.size() + scene->triangles.size() + scene->lights.size() +
+                         scene->materials.size();
+        if (objects > kMaxObjects)
+            return Fail(&st, "too many objects (rt's limit is " + std::to_string(kMaxObjects) + ")",
+                        error);
+    }
+    // The perspective camera's pixel counts follow the image size
+    scene->camera.perspective.widthPixels = scene->width;
+    scene->camera.perspective.heightPixels = scene->height;
+    return true;
+}
+
+bool ReadSceneFile(const char *path, Scene *scene, std::string *error) {
+    struct stat info;
+    if (stat(path, &info) != 0) {
+        *error = std::string(path) + ": " + strerror(errno);
+        return false;
+    }
+    if (!S_ISREG(info.st_mode) || info.st_size > kMaxFileBytes) {
+        *error = std::string(path) +
+                 (S_ISREG(info.st_mode) ? ": larger than 256 MiB" : ": not a regular file");
+        return false;
+    }
+    FILE *file = fopen(path, "rb");
+    if (!file) {
+        *error = std::string(path) + ": " + strerror(errno);
+        return false;
+    }
+    std::string text((size_t)info.st_size, '\0');
+    size_t got = fread(&text[0], 1, text.size(), file);
+    bool failed = ferror(file) != 0;
+    fclose(file);
+    if (failed) {
+        *error = std::string(path) + ": read error";
+        return false;
+    }
+    text.resize(got);
+    return ParseSceneText(text, path, scene, error);
+}
