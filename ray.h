@@ -198,6 +198,20 @@ struct RenderSettings {
 
 enum RayKind { RAY_PRIMARY, RAY_SHADOW, RAY_REFLECTION, RAY_REFRACTION };
 
+// Where a ray stands in its chain: its number (1 for the primary ray; no more than `depth`) and
+// its weight, the share of the pixel's colour it carries (1 for the primary ray, times the
+// mirror fraction or Fresnel weight at each bounce).
+struct RayChain {
+    int number;
+    real weight;
+};
+
+// A ray whose colour would count less than this in its pixel is not cast: 2^-12 is a sixteenth
+// of one 8-bit step (1/255). Without it, glass, which splits every ray in two, would cast up to
+// 2^(depth-1) rays per pixel; this is the adaptive tree-depth control of Hall & Greenberg, "A
+// Testbed for Realistic Image Synthesis", IEEE CG&A 3(8), 1983.
+const real kMinRayWeight = real(1) / 4096;
+
 // Rays cast, by kind, and Phong highlights evaluated. Each row of the image counts into its own
 // and the counts are added up at the end.
 struct RayStats {
@@ -257,10 +271,10 @@ vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir);
 // Decides which effects a render of this scene with these settings can need (see Effects).
 void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects);
 
-// Colour seen along `ray`, a ray of the given kind and number `rayNumber` in its chain
-// (1 = primary). Counts it, and every ray it leads to, in log->stats (and log->tree if set).
+// Colour seen along `ray`, a ray of the given kind at `chain` in its chain. Counts it, and
+// every ray it leads to, in log->stats (and records them in log->tree if that is set).
 color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
-               int rayNumber, TraceLog *log);
+               RayChain chain, TraceLog *log);
 
 // Snell's law for unit d against the unit normal n (d.n <= 0), eta = n1 / n2. Writes the unit
 // refracted direction to *t and returns true, or returns false for total internal reflection.

@@ -118,7 +118,7 @@ color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int
         Ray ray;
         GetCameraRay(&settings->camera, settings->width, settings->height,
                      SamplePosition(i, j, s, n), &ray);
-        sum = sum + TraceRay(scene, settings, RAY_PRIMARY, &ray, 1, &log);
+        sum = sum + TraceRay(scene, settings, RAY_PRIMARY, &ray, RayChain{1, 1}, &log);
     }
     AddStats(&log.stats, stats);
     return (real(1) / n) * sum;

@@ -140,38 +140,41 @@ real FresnelReflectance(real cosI, real eta) {
     return (rs * rs + rp * rp) / 2;
 }
 
-// Sends the next ray of the chain from the hit point in direction dir.
+// Sends the next ray of the chain from the hit point in direction dir, if it is allowed: its
+// number must not pass `depth`, and its colour, counted with `share` (the mirror fraction or
+// the Fresnel weight), must be able to change the pixel (kMinRayWeight). Otherwise black.
 static color FollowRay(const Scene *scene, const RenderSettings *settings, RayKind kind,
-                       const RayHit *hit, vec3 dir, int rayNumber, TraceLog *log) {
-    Ray next = {OffsetRayOrigin(hit, dir), dir};
-    return TraceRay(scene, settings, kind, &next, rayNumber + 1, log);
+                       const RayHit *hit, vec3 dir, real share, RayChain chain, TraceLog *log) {
+    RayChain next = {chain.number + 1, chain.weight * share};
+    if (next.number > settings->depth || next.weight < kMinRayWeight)
+        return {0, 0, 0};
+    Ray ray = {OffsetRayOrigin(hit, dir), dir};
+    return TraceRay(scene, settings, kind, &ray, next, log);
 }
 
 // Clear glass: Fresnel's share R of the reflected ray plus 1 - R of the refracted one. Entering
 // (the ray arrives on the outward side) eta = 1 / ior, leaving eta = ior; under total internal
 // reflection R = 1 and no refracted ray is cast.
 static color GlassColor(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                        const RayHit *hit, const Material *m, int rayNumber, TraceLog *log) {
+                        const RayHit *hit, const Material *m, RayChain chain, TraceLog *log) {
     vec3 d = Normalize(ray->dir), n = hit->normal;
     real eta = hit->frontFace ? 1 / m->ior : m->ior;
     real reflectance = FresnelReflectance(-Dot(d, n), eta);
     vec3 mirrored = d - (2 * Dot(d, n)) * n;
-    color result =
-        reflectance * FollowRay(scene, settings, RAY_REFLECTION, hit, mirrored, rayNumber, log);
+    color result = reflectance * FollowRay(scene, settings, RAY_REFLECTION, hit, mirrored,
+                                           reflectance, chain, log);
     vec3 refracted;
     if (reflectance < 1 && Refract(d, n, eta, &refracted))
         result = result + (1 - reflectance) * FollowRay(scene, settings, RAY_REFRACTION, hit,
-                                                        refracted, rayNumber, log);
+                                                        refracted, 1 - reflectance, chain, log);
     return result;
 }
 
 // The surface's own colour: glass, or lit by the scene's lighting rule.
 static color SurfaceColor(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                          const RayHit *hit, const Material *m, int rayNumber, TraceLog *log) {
+                          const RayHit *hit, const Material *m, RayChain chain, TraceLog *log) {
     if (m->ior > 0)
-        return rayNumber < settings->depth
-                   ? GlassColor(scene, settings, ray, hit, m, rayNumber, log)
-                   : color{0, 0, 0};
+        return GlassColor(scene, settings, ray, hit, m, chain, log);
     if (scene->shading == SHADING_PHONG)
         return PhongColor(scene, settings, ray, hit, m, log);
     return FloorColor(scene, settings, hit, m, log);
@@ -179,18 +182,18 @@ static color SurfaceColor(const Scene *scene, const RenderSettings *settings, co
 
 // Mixes the surface's colour with the mirror image: (1 - K) own + K reflected for `mirror K`.
 // A perfect mirror (K = 1) never shows its own colour, so it casts no shadow rays; a chain that
-// has used up `depth` rays ends in black.
+// has used up `depth` rays ends in black (FollowRay).
 static color ShadeHit(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                      const RayHit *hit, int rayNumber, TraceLog *log) {
+                      const RayHit *hit, RayChain chain, TraceLog *log) {
     const Material *m = &scene->materials[hit->material];
     color result = {0, 0, 0};
     if (m->mirror < 1)
-        result = (1 - m->mirror) * SurfaceColor(scene, settings, ray, hit, m, rayNumber, log);
-    if (m->mirror > 0 && rayNumber < settings->depth) {
+        result = (1 - m->mirror) * SurfaceColor(scene, settings, ray, hit, m, chain, log);
+    if (m->mirror > 0) {
         // Mirror reflection of the incoming direction: r = d - 2 (d.N) N (handout)
         vec3 r = ray->dir - (2 * Dot(ray->dir, hit->normal)) * hit->normal;
-        result =
-            result + m->mirror * FollowRay(scene, settings, RAY_REFLECTION, hit, r, rayNumber, log);
+        result = result + m->mirror * FollowRay(scene, settings, RAY_REFLECTION, hit, r, m->mirror,
+                                                chain, log);
     }
     return result;
 }
@@ -201,7 +204,7 @@ static void CountRay(RayKind kind, RayStats *stats) {
 }
 
 color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
-               int rayNumber, TraceLog *log) {
+               RayChain chain, TraceLog *log) {
     CountRay(kind, &log->stats);
     int node = RecordRay(kind, ray, log);
     RayHit hit;
@@ -210,7 +213,7 @@ color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind,
     if (found) {
         int parent = log->current;
         log->current = node;
-        result = ShadeHit(scene, settings, ray, &hit, rayNumber, log);
+        result = ShadeHit(scene, settings, ray, &hit, chain, log);
         log->current = parent;
     }
     if (node >= 0) { // the tree may have grown (and moved) during the recursion

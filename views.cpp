@@ -64,7 +64,7 @@ static color ViewValue(const Scene *scene, const RenderSettings *settings, ViewK
     if (view == VIEW_COST) {
         RayStats stats = {0, 0, 0, 0, 0};
         TraceLog log = {stats, nullptr, -1};
-        TraceRay(scene, settings, RAY_PRIMARY, &ray, 1, &log);
+        TraceRay(scene, settings, RAY_PRIMARY, &ray, RayChain{1, 1}, &log);
         *scalar = real(log.stats.primary + log.stats.shadow + log.stats.reflection +
                        log.stats.refraction);
         return {0, 0, 0};
