@@ -42,6 +42,8 @@ void TestTriangles();
 void TestShading();
 void TestCamera();
 void TestAssignmentImage();
+void TestSceneFiles();
+void TestProbes();
 void TestProgram();
 
 #endif

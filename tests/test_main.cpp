@@ -53,6 +53,8 @@ int main() {
     TestShading();
     TestCamera();
     TestAssignmentImage();
+    TestSceneFiles();
+    TestProbes();
     TestProgram();
     printf("%d passed, %d failed\n", passedChecks, failedChecks);
     return failedChecks == 0 ? 0 : 1;

@@ -5,6 +5,7 @@
 // status 2 (3 for I/O), one `ray: ` line, and no output file touched.
 #include "test.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -118,6 +119,101 @@ static void TestBadInput(const std::string &dir) {
           "--version exits 0 and names rt");
 }
 
+// Scene files through the program: the default output name, errors with file and line, calm
+// handling of empty, binary, huge-line and directory input.
+static void TestSceneFilesInProgram(const std::string &dir) {
+    char *here = realpath("scenes/reference.scene", nullptr);
+    std::string reference = here ? here : "scenes/reference.scene";
+    free(here);
+    std::string err;
+    CHECK(RunRay(dir, "'" + reference + "' --size 64", &err) == 0 &&
+              FileExists(dir + "/reference.png"),
+          "`ray path/reference.scene` writes reference.png in the current directory");
+
+    std::ofstream(dir + "/typo.scene") << "# a scene with a typo\nmaterial red diffuse 1 0 0\n"
+                                          "spher 0 0 -5 1 red\n";
+    CHECK(
+        RunRay(dir, "typo.scene", &err) == 2 &&
+            err == "ray: typo.scene:3: unknown keyword 'spher'\n" && !FileExists(dir + "/typo.png"),
+        "a typo: exit 2, `ray: typo.scene:3: unknown keyword 'spher'`, no image (got " + err + ")");
+
+    std::ofstream(dir + "/empty.scene");
+    Image image;
+    std::string readError;
+    CHECK(RunRay(dir, "empty.scene --size 8", &err) == 0 &&
+              ReadPng((dir + "/empty.png").c_str(), &image, &readError) && image.width == 8 &&
+              image.pixels == std::vector<uint8_t>(8 * 8 * 3, 0),
+          "an empty scene file renders the black background");
+
+    std::string garbage;
+    for (int k = 0; k < 4096; k++)
+        garbage += (char)((k * 7919) % 256);
+    std::ofstream(dir + "/garbage.scene", std::ios::binary) << garbage;
+    CHECK(RunRay(dir, "garbage.scene", &err) == 2 && err.rfind("ray: garbage.scene:", 0) == 0,
+          "binary garbage: exit 2 with file and line (got " + err + ")");
+
+    std::ofstream(dir + "/long.scene") << "# " << std::string(1 << 20, 'x') << "\nsize 4 4\n";
+    CHECK(RunRay(dir, "long.scene", &err) == 0, "a 1 MB comment line is read calmly");
+    std::string numbers;
+    for (int k = 0; k < 200000; k++)
+        numbers += " 1.5";
+    std::ofstream(dir + "/numbers.scene") << "ambient" << numbers << "\n";
+    CHECK(RunRay(dir, "numbers.scene", &err) == 2 &&
+              err.find("numbers.scene:1: ambient: extra value") != std::string::npos,
+          "a 1 MB line of numbers: one error line (got " + err.substr(0, 80) + ")");
+    CHECK(RunRay(dir, "/tmp", &err) == 2 && err.find("not a regular file") != std::string::npos,
+          "a directory as the scene: exit 2");
+    CHECK(RunRay(dir, "missing.scene", &err) == 2 &&
+              err == "ray: missing.scene: No such file or directory\n",
+          "a missing scene file: exit 2 (got " + err + ")");
+}
+
+static std::string ReadOutput(const std::string &dir) { return ReadFile(dir + "/out.txt"); }
+
+static void TestProbesInProgram(const std::string &dir) {
+    std::string err;
+    CHECK(RunRay(dir, "--ray 0 0 0 0 0 -1", &err) == 0 &&
+              ReadOutput(dir).rfind("{\"hit\":true,\"t\":14,", 0) == 0,
+          "--ray 0 0 0 0 0 -1: the mirror sphere at t = 14");
+    CHECK(RunRay(dir, "--ray 0 0 0 0 0 0", &err) == 2 &&
+              err.find("direction is zero") != std::string::npos,
+          "--ray with a zero direction: exit 2");
+    CHECK(RunRay(dir, "--ray 0 0 0 0 0", &err) == 2, "--ray with 5 numbers: exit 2");
+
+    std::ofstream(dir + "/rays.txt") << "# probes\n0 0 0 0 0 -1\n\n0 0 0 0 1 0\nbad line\n"
+                                        "0 0 0 1 -1 -6\n";
+    int status = RunRay(dir, "--rays rays.txt", &err);
+    std::string out = ReadOutput(dir);
+    CHECK(status == 2 && std::count(out.begin(), out.end(), '\n') == 4 &&
+              out.find("{\"hit\":false}\n{\"error\":\"line 5: expected 6 numbers") !=
+                  std::string::npos &&
+              out.find("\"index\":3") != std::string::npos,
+          "--rays: 4 answers for 4 probe lines, the bad one an error in its place, exit 2");
+    status = RunRay(dir, "--rays - < rays.txt", &err);
+    CHECK(status == 2 && ReadOutput(dir) == out, "--rays - reads standard input the same way");
+
+    CHECK(RunRay(dir, "--pixel 110 330", &err) == 0 &&
+              ReadOutput(dir).find("\"kind\":\"shadow\"") != std::string::npos,
+          "--pixel 110 330 prints a tree with a shadow ray");
+    CHECK(RunRay(dir, "--pixel 512 0", &err) == 2 && err.find("outside") != std::string::npos,
+          "--pixel outside the image: exit 2");
+}
+
+static void TestCompareInProgram(const std::string &dir) {
+    std::string err;
+    RunRay(dir, "--size 32 -o a.png", &err);
+    RunRay(dir, "--size 32 -o b.png --depth 1", &err); // mirrors turn black: very different
+    CHECK(RunRay(dir, "--compare a.png a.png", &err) == 0 &&
+              ReadOutput(dir).find("largest difference: 0") != std::string::npos,
+          "--compare of an image with itself: exit 0, largest difference 0");
+    CHECK(RunRay(dir, "--compare a.png b.png -o heat.png", &err) == 1 &&
+              FileExists(dir + "/heat.png"),
+          "--compare of different images: exit 1, heat map written");
+    CHECK(RunRay(dir, "--compare a.png b.png --tolerance 255", &err) == 0,
+          "--compare within tolerance 255: exit 0");
+    CHECK(RunRay(dir, "--compare a.png nothere.png", &err) == 2, "--compare of a missing file: 2");
+}
+
 void TestProgram() {
     char pattern[] = "/tmp/rt-test-XXXXXX";
     const char *dir = mkdtemp(pattern);
@@ -126,6 +222,9 @@ void TestProgram() {
         return;
     TestDefaultRun(dir);
     TestBadInput(dir);
+    TestSceneFilesInProgram(dir);
+    TestProbesInProgram(dir);
+    TestCompareInProgram(dir);
     std::string cleanup = std::string("rm -rf '") + dir + "'";
     CHECK(system(cleanup.c_str()) == 0, "temporary directory removed");
 }

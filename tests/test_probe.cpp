@@ -1,0 +1,180 @@
+// tests/test_probe.cpp -- the probes (--ray, --rays, --pixel), the debug views and --compare,
+// each against hits and colours worked out by hand on the assignment scene.
+#include "test.h"
+
+#include <cstdlib>
+#include <cstring>
+
+// The number after `"key":` in a JSON line (the first occurrence at or after `from`).
+static double JsonNumber(const std::string &json, const std::string &key, size_t from = 0) {
+    size_t at = json.find("\"" + key + "\":", from);
+    return at == std::string::npos ? NAN : strtod(json.c_str() + at + key.size() + 3, nullptr);
+}
+
+// The k-th number of the array after `"key":[`.
+static double JsonArray(const std::string &json, const std::string &key, int k) {
+    size_t at = json.find("\"" + key + "\":[");
+    if (at == std::string::npos)
+        return NAN;
+    const char *p = json.c_str() + at + key.size() + 4;
+    for (int i = 0; i < k; i++)
+        p = strchr(p, ',') + 1;
+    return strtod(p, nullptr);
+}
+
+static void TestProbeRays() {
+    Scene scene;
+    BuildDefaultScene(&scene);
+    RenderSettings settings = TestSettings(&scene);
+
+    // Straight ahead: the big mirror sphere (centre z = -16, radius 2) at t = 14, exactly
+    Ray ahead = {{0, 0, 0}, {0, 0, -1}};
+    CHECK(ProbeRayJson(&scene, &settings, &ahead) ==
+              "{\"hit\":true,\"t\":14,\"point\":[0,0,-14],\"normal\":[0,0,1],\"front\":true,"
+              "\"shape\":\"sphere\",\"index\":0,\"material\":\"mirror\"}",
+          "probe straight ahead: sphere 0 at t = 14, the SPEC's JSON exactly");
+
+    // Down and ahead, d = (1, -1, -6): the floor y = -2 at t = 2, point (2, -2, -12); it lies
+    // on the floor's second triangle (z = -12 is beyond the diagonal's -13.75 at x = 2)
+    Ray down = {{0, 0, 0}, {1, -1, -6}};
+    std::string j = ProbeRayJson(&scene, &settings, &down);
+    CHECK_NEAR(JsonNumber(j, "t"), 2, 4 * kRelTol, "probe at the floor: t = 2");
+    CHECK(std::fabs(JsonArray(j, "point", 0) - 2) < 1e-5 &&
+              std::fabs(JsonArray(j, "point", 1) + 2) < 1e-5 &&
+              std::fabs(JsonArray(j, "point", 2) + 12) < 1e-5,
+          "probe at the floor: point (2, -2, -12)");
+    CHECK(JsonArray(j, "normal", 1) == 1 &&
+              j.find("\"front\":true,\"shape\":\"triangle\",\"index\":3,\"material\":\"white\"") !=
+                  std::string::npos,
+          "probe at the floor: triangle 3, white, normal (0, 1, 0), from the front: " + j);
+
+    // t is in units of the direction as given: |d| = 1000 reaches the sphere at t = 0.014
+    Ray scaled = {{0, 0, 0}, {0, 0, -1000}};
+    CHECK_NEAR(JsonNumber(ProbeRayJson(&scene, &settings, &scaled), "t"), 0.014, 0.014 * kRelTol,
+               "probe with |d| = 1000: t = 0.014");
+    Ray up = {{0, 0, 0}, {0, 1, 0}};
+    CHECK(ProbeRayJson(&scene, &settings, &up) == "{\"hit\":false}", "probe upward: no hit");
+}
+
+struct ProbeLineCase {
+    const char *line;
+    bool ok, blank;
+    const char *message;
+};
+
+static const ProbeLineCase kProbeLines[] = {
+    {"0 0 0 0 0 -1", true, false, ""},
+    {"  1e0\t-2 +3  0 0 -1  # trailing comment\r", true, false, ""},
+    {"", true, true, ""},
+    {"   # only a comment", true, true, ""},
+    {"1 2 3", false, false, "expected 6 numbers"},
+    {"0 0 0 0 0 -1 7", false, false, "expected 6 numbers"},
+    {"0 0 0 0 0 0", false, false, "direction is zero"},
+    {"nan 0 0 0 0 1", false, false, "not a decimal number"},
+    {"0 0 0 inf 0 1", false, false, "not a decimal number"},
+    {"0 0 0 1e400 0 1", false, false, "out of range"},
+};
+
+static void TestProbeLines() {
+    for (const ProbeLineCase &c : kProbeLines) {
+        Ray ray;
+        bool blank = false;
+        std::string error;
+        bool ok = ParseProbeLine(c.line, &ray, &blank, &error);
+        CHECK(ok == c.ok && (!ok || blank == c.blank) &&
+                  (ok || error.find(c.message) != std::string::npos),
+              std::string("probe line `") + c.line + "`: " + (c.ok ? "read" : c.message));
+    }
+    CHECK(ProbeErrorJson("say \"hi\"\\") == "{\"error\":\"say \\\"hi\\\"\\\\\"}",
+          "probe error JSON escapes quotes and backslashes");
+}
+
+// The ray tree of pixel (110, 330): a floor point in the red sphere's shadow, so the primary
+// node has one child, a shadow ray blocked by sphere 2; pixel (300, 300) sees the big mirror,
+// whose reflection ray hits the lit floor, whose shadow ray reaches the light.
+static void TestPixelTrees() {
+    Scene scene;
+    BuildDefaultScene(&scene);
+    RenderSettings settings = TestSettings(&scene);
+    std::string shadowed = PixelTreeJson(&scene, &settings, 110, 330);
+    CHECK(shadowed.rfind("{\"kind\":\"primary\",\"origin\":[0,0,0]", 0) == 0 &&
+              shadowed.find("\"material\":\"white\"") != std::string::npos &&
+              shadowed.find("\"children\":[{\"kind\":\"shadow\"") != std::string::npos &&
+              shadowed.find("\"shape\":\"sphere\",\"index\":2,\"material\":\"red\"") !=
+                  std::string::npos,
+          "pixel (110, 330): primary on the floor, shadow ray blocked by the red sphere");
+    CHECK_NEAR(JsonArray(shadowed, "color", 0), 0.2, kRelTol,
+               "pixel (110, 330): the tree's colour is the ambient floor 0.2");
+
+    std::string mirror = PixelTreeJson(&scene, &settings, 300, 300);
+    size_t reflection = mirror.find("\"kind\":\"reflection\"");
+    size_t shadow = mirror.find("\"kind\":\"shadow\"");
+    CHECK(reflection != std::string::npos && shadow > reflection &&
+              mirror.find("\"hit\":null,\"color\":[1,1,1]") != std::string::npos,
+          "pixel (300, 300): mirror -> reflection -> floor -> unblocked shadow ray (light 1 1 1)");
+}
+
+static void TestViews() {
+    Scene scene;
+    BuildDefaultScene(&scene);
+    RenderSettings settings = TestSettings(&scene);
+    Image image;
+    auto pixel = [&image](int i, int j, int c) { return image.pixels[(j * 512 + i) * 3 + c]; };
+    ViewKind view;
+    CHECK(FindView("normal", &view) && view == VIEW_NORMAL && !FindView("normals", &view),
+          "views are found by their exact names");
+
+    // Normal view: the back wall's normal (0, 0, 1) is drawn (0.5, 0.5, 1) -> (128, 128, 255)
+    RenderView(&scene, &settings, VIEW_NORMAL, &image);
+    CHECK(pixel(256, 100, 0) == 128 && pixel(256, 100, 1) == 128 && pixel(256, 100, 2) == 255,
+          "normal view: the back wall is (128, 128, 255)");
+    CHECK(pixel(256, 500, 0) == 0 && pixel(256, 500, 2) == 0, "normal view: a miss is black");
+
+    // Shadow view: (110, 330) is blocked (red), (256, 330) is lit (white)
+    RenderView(&scene, &settings, VIEW_SHADOW, &image);
+    CHECK(pixel(110, 330, 0) == 255 && pixel(110, 330, 1) == 0, "shadow view: blocked is red");
+    CHECK(pixel(256, 330, 0) == 255 && pixel(256, 330, 1) == 255 && pixel(256, 330, 2) == 255,
+          "shadow view: lit is white");
+
+    // Depth view: the floor's front edge (nearest) is brighter than the back wall
+    RenderView(&scene, &settings, VIEW_DEPTH, &image);
+    CHECK(pixel(256, 350, 0) > pixel(256, 100, 0) && pixel(256, 100, 0) > 0,
+          "depth view: the near floor is brighter than the far wall");
+
+    // Object id: the two floor triangles and the spheres get different colours
+    RenderView(&scene, &settings, VIEW_ID, &image);
+    CHECK(memcmp(&image.pixels[(330 * 512 + 110) * 3], &image.pixels[(100 * 512 + 256) * 3], 3) !=
+              0,
+          "id view: the floor and the back wall differ");
+
+    // Cost: a lit floor pixel costs 2 rays (primary, shadow), the mirror reflecting the lit
+    // floor 3 (primary, reflection, shadow), so it is drawn hotter
+    RenderView(&scene, &settings, VIEW_COST, &image);
+    CHECK(pixel(300, 300, 1) > pixel(256, 330, 1), "cost view: a reflected pixel costs more");
+}
+
+static void TestCompare() {
+    // Two 2 x 1 images differing in one channel by 3: RMSE = sqrt(9 / 6) = 1.2247, PSNR =
+    // 20 log10(255 / 1.2247) = 46.37 dB, largest 3, one pixel over tolerance 2, none over 3
+    Image a = {2, 1, {0, 0, 0, 10, 10, 10}}, b = {2, 1, {3, 0, 0, 10, 10, 10}}, heat;
+    ImageDifference d;
+    CHECK(CompareImages(&a, &b, 2, &d, &heat), "compare: same size");
+    CHECK_NEAR(d.rmse, std::sqrt(1.5), 1e-12, "compare: RMSE sqrt(9/6)");
+    CHECK_NEAR(d.psnr, 20 * std::log10(255 / std::sqrt(1.5)), 1e-9, "compare: PSNR 46.37 dB");
+    CHECK(d.largest == 3 && d.pixelsOver == 1, "compare: largest 3, one pixel over 2");
+    CHECK(heat.pixels[0] > 0 && heat.pixels[3] == 0, "compare: the heat map marks the pixel");
+    CompareImages(&a, &b, 3, &d, &heat);
+    CHECK(d.pixelsOver == 0, "compare: within tolerance 3");
+    CompareImages(&a, &a, 0, &d, &heat);
+    CHECK(d.rmse == 0 && std::isinf(d.psnr) && d.largest == 0, "compare: identical images");
+    Image c = {1, 1, {0, 0, 0}};
+    CHECK(!CompareImages(&a, &c, 0, &d, &heat), "compare: different sizes are refused");
+}
+
+void TestProbes() {
+    TestProbeRays();
+    TestProbeLines();
+    TestPixelTrees();
+    TestViews();
+    TestCompare();
+}

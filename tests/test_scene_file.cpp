@@ -1,0 +1,252 @@
+// tests/test_scene_file.cpp -- scene files: every error names its line, valid variations read
+// the same, the three cameras make the rays worked out by hand, and the built-in scenes' files
+// draw the built-in scenes' bytes.
+#include "test.h"
+
+#include <cstdio>
+#include <dirent.h>
+#include <fstream>
+#include <sstream>
+
+struct BadScene {
+    const char *text;
+    int line;            // the line the error must name
+    const char *message; // a piece of the message
+};
+
+static const BadScene kBadScenes[] = {
+    {"bogus 1 2", 1, "unknown keyword 'bogus'"},
+    {"Sphere 0 0 0 1 m", 1, "unknown keyword"}, // keywords are lower case
+    {"\n\n  size 512", 3, "missing number"},
+    {"size 512 512 3", 1, "extra value '3'"},
+    {"size 0 512", 1, "between 1 and 16384"},
+    {"size 16385 2", 1, "between 1 and 16384"},
+    {"size 1.5 2", 1, "not a whole number"},
+    {"ambient nan", 1, "not a decimal number"},
+    {"ambient inf", 1, "not a decimal number"},
+    {"ambient 0x10", 1, "not a decimal number"},
+    {"ambient 0.5x", 1, "not a decimal number"},
+    {"ambient 1e999", 1, "out of range"},
+    {"ambient 1.5", 1, "[0, 1]"},
+    {"ambient 0.1\nambient 0.2", 2, "second 'ambient'"},
+    {"size 1 1\n# fine\nsize 2 2", 3, "second 'size'"},
+    {"shading phong\nshading floor", 2, "second 'shading'"},
+    {"background 0 0 0\nbackground 0 0 0", 2, "second 'background'"},
+    {"depth 3\ndepth 4", 2, "second 'depth'"},
+    {"camera perspective 0 0 0 2 2\ncamera perspective 0 0 0 2 2", 2, "second 'camera'"},
+    {"depth 0", 1, "between 1 and 1000"},
+    {"depth 1001", 1, "between 1 and 1000"},
+    {"shading gouraud", 1, "'floor' or 'phong'"},
+    {"background 0 0 2", 1, "[0, 1]"},
+    {"background 0 0", 1, "missing number"},
+    {"camera fisheye 1", 1, "unknown kind"},
+    {"camera perspective 0 0 0 0 2", 1, "must be > 0"},
+    {"camera perspective 0 0 0 2", 1, "missing number"},
+    {"camera lookat 0 0 0  0 0 0  0 1 0  60", 1, "from != to"},
+    {"camera lookat 0 0 0  0 0 -1  0 0 -1  60", 1, "up not along the view"},
+    {"camera lookat 0 0 0  0 0 -1  0 1 0  180", 1, "between 0 and 180"},
+    {"camera screen 0 0 0  -1 -1 -1  2 0 0  4 0 0", 1, "not parallel"},
+    {"sphere 0 0 0 1 m", 1, "material 'm' is not defined"},
+    {"sphere 0 0 0 1 m\nmaterial m", 1, "not defined"}, // used before it is defined
+    {"material m\nsphere 0 0 0 0 m", 2, "radius must be > 0"},
+    {"material m\nsphere 0 0 0 -1 m", 2, "radius must be > 0"},
+    {"material m\nsphere 0 0 0 m", 2, "expected 4 numbers and a material"},
+    {"material m\nsphere 0 0 0 1 m extra", 2, "extra value 'extra'"},
+    {"material m\ntriangle 0 0 0 1 0 0 0 1 m", 2, "expected 9 numbers"},
+    {"material m\ntriangle 0 0 0 1 0 0 0 1 z m", 2, "not a decimal number: 'z'"},
+    {"material m\nmaterial m", 2, "defined twice"},
+    {"material", 1, "missing name"},
+    {"material m diffuse 1.5 0 0", 1, "[0, 1]"},
+    {"material m diffuse -0.1 0 0", 1, "[0, 1]"},
+    {"material m diffuse 1 1", 1, "needs 3 number"},
+    {"material m ambient 1 1 7", 1, "[0, 1]"},
+    {"material m specular 0.5", 1, "needs 2 number"},
+    {"material m specular -1 10", 1, ">= 0"},
+    {"material m mirror 2", 1, "mirror fraction must be in [0, 1]"},
+    {"material m mirror 0.5 mirror 0.2", 1, "given twice"},
+    {"material m glass 0", 1, "index of refraction must be > 0"},
+    {"material m glass -1.5", 1, "index of refraction must be > 0"},
+    {"material m shiny 3", 1, "unknown property 'shiny'"},
+    {"light 0 0 0 1 1", 1, "missing number"},
+    {"light 0 0 0 1 1 2", 1, "[0, 1]"},
+    {"light 0 0 0 1 1 1 1", 1, "extra value"},
+    {"\x01\x02\xff\xfe garbage", 1, "unknown keyword '????'"},
+    {"# ok\r\nsize 64 64\r\nbogus\r\n", 3, "unknown keyword 'bogus'"}, // CRLF counts lines too
+};
+
+static void TestSceneErrors() {
+    for (const BadScene &bad : kBadScenes) {
+        Scene scene;
+        std::string error;
+        bool ok = ParseSceneText(bad.text, "s.scene", &scene, &error);
+        std::string expected = "s.scene:" + std::to_string(bad.line) + ": ";
+        CHECK(!ok && error.compare(0, expected.size(), expected) == 0 &&
+                  error.find(bad.message) != std::string::npos,
+              "scene `" + std::string(bad.text).substr(0, 40) + "`: error at line " +
+                  std::to_string(bad.line) + " mentioning \"" + bad.message + "\" (got: " + error +
+                  ")");
+    }
+}
+
+// Comments, tabs, CRLF, signs and scientific notation read as the plain form does.
+static void TestSceneVariations() {
+    const char *text = "  # a comment line\r\n"
+                       "size\t64   32\r\n"
+                       "\r\n"
+                       "ambient +2e-1   # the floor\r\n"
+                       "material m diffuse .5 1. 0 specular 0.25 1E1 mirror 0.5\n"
+                       "\tsphere 1e0 -2 +3 5e-1 m\n"
+                       "light 1 2 3\n"
+                       "shading phong\n";
+    Scene scene;
+    std::string error;
+    bool ok = ParseSceneText(text, "v.scene", &scene, &error);
+    CHECK(ok, "comments, tabs, CRLF and scientific notation are accepted (" + error + ")");
+    if (!ok)
+        return;
+    CHECK(scene.width == 64 && scene.height == 32, "size 64 32 read through a tab");
+    CHECK_NEAR(scene.ambient, 0.2, kRelTol, "ambient +2e-1 is 0.2");
+    const Material &m = scene.materials[0];
+    CHECK(m.diffuse.x == real(0.5) && m.diffuse.y == 1 && m.diffuse.z == 0 &&
+              m.specular == real(0.25) && m.shininess == 10 && m.mirror == real(0.5) &&
+              m.ambient.x == real(0.5),
+          "material: .5, 1., 1E1 read; ambient defaults to the diffuse colour");
+    CHECK(scene.spheres.size() == 1 && scene.spheres[0].center.x == 1 &&
+              scene.spheres[0].center.z == 3 && scene.spheres[0].radius == real(0.5),
+          "sphere 1e0 -2 +3 5e-1 read as centre (1, -2, 3), radius 0.5");
+    CHECK(scene.lights.size() == 1 && scene.lights[0].intensity.x == 1,
+          "a light without a colour is white");
+    CHECK(scene.shading == SHADING_PHONG, "shading phong");
+
+    // An empty file is a valid scene: the defaults of SPEC section 3
+    ok = ParseSceneText("", "e.scene", &scene, &error);
+    CHECK(ok && scene.width == 512 && scene.camera.kind == CAMERA_PERSPECTIVE &&
+              scene.camera.perspective.distance == 2 && scene.camera.perspective.width == 2 &&
+              scene.depth == 10 && scene.ambient == real(0.2) && scene.spheres.empty(),
+          "an empty scene file: 512 x 512, camera perspective 0 0 0 2 2, depth 10");
+}
+
+static Ray CameraRay(const char *text, int i, int j) {
+    Scene scene;
+    std::string error;
+    bool ok = ParseSceneText(text, "c.scene", &scene, &error);
+    CHECK(ok, std::string("camera scene reads: ") + error);
+    RenderSettings settings = TestSettings(&scene);
+    Ray ray;
+    GetCameraRay(&settings.camera, settings.width, settings.height, SamplePosition(i, j, 0, 1),
+                 &ray);
+    return ray;
+}
+
+static void CheckDir(const Ray &ray, vec3 expected, real tolerance, const std::string &what) {
+    vec3 d = ray.dir;
+    CHECK(std::fabs(d.x - expected.x) <= tolerance && std::fabs(d.y - expected.y) <= tolerance &&
+              std::fabs(d.z - expected.z) <= tolerance,
+          what + ": direction (" + std::to_string(d.x) + ", " + std::to_string(d.y) + ", " +
+              std::to_string(d.z) + ")");
+}
+
+static void TestCameras() {
+    // The second handout's screen with l = (-1, -1, -2), h = (2, 0, 0), v = (0, 2, 0) is the
+    // assignment camera: pixel (0, 0) of 512 goes through l + (0.5/512) h + (511.5/512) v =
+    // (-0.998046875, 0.998046875, -2), exactly as GetRay's
+    const char *screen = "camera screen 0 0 0  -1 -1 -2  2 0 0  0 2 0";
+    CheckDir(CameraRay(screen, 0, 0), {-0.998046875, 0.998046875, -2}, 0,
+             "screen camera, top-left pixel");
+    CheckDir(CameraRay(screen, 511, 511), {0.998046875, -0.998046875, -2}, 0,
+             "screen camera, bottom-right pixel");
+    // The same screen for a 4 x 2 image: pixel (3, 1) is right and bottom: across 3.5/4,
+    // up (2 - 1.5)/2 = 0.25: (-1 + 1.75, -1 + 0.5, -2)
+    std::string wide = std::string("size 4 2\n") + screen;
+    CheckDir(CameraRay(wide.c_str(), 3, 1), {0.75, -0.5, -2}, 0, "screen camera, 4 x 2 image");
+
+    // lookat from the origin toward -z, fov 90 (screen 1 away, tan 45 = 1 high above centre),
+    // 2 x 2 image: pixel (0, 0)'s centre is a quarter across and three quarters up:
+    // (-1 + 0.5, -1 + 1.5, -1) = (-0.5, 0.5, -1)
+    const char *look = "size 2 2\ncamera lookat 0 0 0  0 0 -1  0 1 0  90";
+    CheckDir(CameraRay(look, 0, 0), {-0.5, 0.5, -1}, 4 * kRelTol, "lookat, fov 90, pixel (0, 0)");
+    // A 4 x 2 image widens the screen to 4 units: pixel (0, 0) at (-2 + 0.5, 0.5, -1)
+    const char *lookWide = "size 4 2\ncamera lookat 0 0 0  0 0 -1  0 1 0  90";
+    CheckDir(CameraRay(lookWide, 0, 0), {-1.5, 0.5, -1}, 4 * kRelTol,
+             "lookat 4 x 2 keeps square pixels");
+    // From (5, 0, 0) toward the origin, a 1 x 1 image: the only ray goes straight at the target
+    Ray centre = CameraRay("size 1 1\ncamera lookat 5 0 0  0 0 0  0 1 0  30", 0, 0);
+    CHECK(centre.origin.x == 5, "lookat: rays start at `from`");
+    CheckDir(centre, {-1, 0, 0}, 4 * kRelTol, "lookat from +x: the centre ray points at `to`");
+
+    // The handout's perspective camera with its eye moved: pixel (0, 0) of 512, eye (1, 2, 3)
+    CheckDir(CameraRay("camera perspective 1 2 3 2 2", 0, 0), {-0.998046875, 0.998046875, -2}, 0,
+             "perspective camera, eye moved: same direction");
+}
+
+static bool SameScene(const Scene &a, const Scene &b) {
+    bool same = a.width == b.width && a.height == b.height && a.depth == b.depth &&
+                a.ambient == b.ambient && a.shading == b.shading &&
+                a.materials.size() == b.materials.size() && a.spheres.size() == b.spheres.size() &&
+                a.triangles.size() == b.triangles.size() && a.lights.size() == b.lights.size();
+    for (size_t k = 0; same && k < a.triangles.size(); k++) {
+        const Triangle &s = a.triangles[k], &t = b.triangles[k];
+        same = s.a.x == t.a.x && s.a.y == t.a.y && s.a.z == t.a.z && s.b.x == t.b.x &&
+               s.b.y == t.b.y && s.b.z == t.b.z && s.c.x == t.c.x && s.c.y == t.c.y &&
+               s.c.z == t.c.z && s.material == t.material;
+    }
+    return same;
+}
+
+// scenes/reference.scene and scenes/test.scene hold the built-in scenes: the same data, and the
+// same bytes when rendered.
+static void TestBuiltInSceneFiles() {
+    const char *files[] = {"scenes/reference.scene", "scenes/test.scene"};
+    for (int k = 0; k < 2; k++) {
+        Scene builtIn, fromFile;
+        k == 0 ? BuildDefaultScene(&builtIn) : BuildTestScene(&builtIn);
+        std::string error;
+        bool ok = ReadSceneFile(files[k], &fromFile, &error);
+        CHECK(ok && SameScene(builtIn, fromFile),
+              std::string(files[k]) + " holds the built-in scene (" + error + ")");
+        if (!ok)
+            continue;
+        RenderSettings a = TestSettings(&builtIn), b = TestSettings(&fromFile);
+        a.threads = b.threads = 2;
+        if (k == 1) { // the test scene at a quarter of the size keeps the tests quick
+            a.width = a.height = b.width = b.height = 128;
+            PlanRender(&builtIn, &a);
+            PlanRender(&fromFile, &b);
+        }
+        Image imageA, imageB;
+        RayStats stats = {0, 0, 0, 0, 0};
+        Render(&builtIn, &a, &imageA, &stats);
+        Render(&fromFile, &b, &imageB, &stats);
+        CHECK(imageA.pixels == imageB.pixels,
+              std::string(files[k]) + " renders the built-in scene's bytes");
+    }
+}
+
+// Every scene in scenes/ reads without error (they are the students' starting points).
+static void TestGalleryScenesRead() {
+    DIR *dir = opendir("scenes");
+    CHECK(dir != nullptr, "the scenes/ directory exists");
+    if (!dir)
+        return;
+    int count = 0;
+    while (dirent *entry = readdir(dir)) {
+        std::string name = entry->d_name;
+        if (name.size() < 7 || name.compare(name.size() - 6, 6, ".scene") != 0)
+            continue;
+        Scene scene;
+        std::string error;
+        CHECK(ReadSceneFile(("scenes/" + name).c_str(), &scene, &error),
+              "scenes/" + name + " reads (" + error + ")");
+        count++;
+    }
+    closedir(dir);
+    CHECK(count >= 4, "scenes/ holds the built-in scenes and starting points");
+}
+
+void TestSceneFiles() {
+    TestSceneErrors();
+    TestSceneVariations();
+    TestCameras();
+    TestBuiltInSceneFiles();
+    TestGalleryScenesRead();
+}
