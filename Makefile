@@ -13,7 +13,7 @@ PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
 PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 
 CORE = geometry shade render image scene_file probe views scene_default scene_test
-TESTS = $(basename $(notdir $(wildcard tests/test_*.cpp)))
+TESTS = $(basename $(notdir $(wildcard tests/test_*.cpp))) exercise
 
 # Object lists for one build variant: $(call objs,DIR,NAMES)
 objs = $(addprefix $(1)/,$(addsuffix .o,$(2)))
@@ -67,12 +67,31 @@ build/sanitize/run_tests: $(call objs,build/sanitize/tests,$(TESTS)) $(SAN_CORE)
 sanitize: build/sanitize/ray build/sanitize/run_tests
 	@RAY=build/sanitize/ray sh tests/run.sh build/sanitize/run_tests
 
+# Fuzzing (clang and libFuzzer): the scene reader and the probe-line reader, with ASan + UBSan.
+# Runs FUZZ_SECONDS (default 600) starting from tests/corpus; inputs that crash are kept by
+# libFuzzer as crash-* files, to be fixed and copied into tests/corpus.
+FUZZ_CXX = clang++
+FUZZ_FLAGS = -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all
+FUZZ_SECONDS ?= 600
+
+build/fuzz/%.o: %.cpp
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) $(FUZZ_FLAGS) -fsanitize=fuzzer-no-link $(RT_FLAGS) $(PNG_CFLAGS) -I. -c -o $@ $<
+
+build/fuzz/fuzz_scene: $(call objs,build/fuzz,$(CORE) tests/exercise tests/fuzz_scene)
+	$(FUZZ_CXX) $(FUZZ_FLAGS) -fsanitize=fuzzer $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
+
+fuzz: build/fuzz/fuzz_scene
+	@mkdir -p build/fuzz/corpus
+	build/fuzz/fuzz_scene -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 \
+	    -artifact_prefix=build/fuzz/ build/fuzz/corpus tests/corpus
+
 bench: ray ray_float
 	@sh bench/bench.sh
 
 clean:
 	rm -rf build ray ray_float
 
-.PHONY: all test check sanitize bench clean
+.PHONY: all test check sanitize fuzz bench clean
 
 -include $(wildcard build/*/*.d build/*/tests/*.d)

@@ -45,5 +45,7 @@ void TestAssignmentImage();
 void TestSceneFiles();
 void TestProbes();
 void TestProgram();
+void TestCorpus();
+void TestEffects();
 
 #endif

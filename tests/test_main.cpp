@@ -53,9 +53,11 @@ int main() {
     TestShading();
     TestCamera();
     TestAssignmentImage();
+    TestEffects();
     TestSceneFiles();
     TestProbes();
     TestProgram();
+    TestCorpus();
     printf("%d passed, %d failed\n", passedChecks, failedChecks);
     return failedChecks == 0 ? 0 : 1;
 }

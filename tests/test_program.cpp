@@ -130,6 +130,14 @@ static void TestSceneFilesInProgram(const std::string &dir) {
               FileExists(dir + "/reference.png"),
           "`ray path/reference.scene` writes reference.png in the current directory");
 
+    char *gallery = realpath("scenes/effects.scene", nullptr);
+    CHECK(
+        gallery && RunRay(dir, std::string("'") + gallery + "' --size 40x25 --stats", &err) == 0 &&
+            err.find("\neffects: shadows reflection refraction specular\n") != std::string::npos &&
+            FileExists(dir + "/effects.png"),
+        "--stats on the effects gallery: shadows reflection refraction specular");
+    free(gallery);
+
     std::ofstream(dir + "/typo.scene") << "# a scene with a typo\nmaterial red diffuse 1 0 0\n"
                                           "spher 0 0 -5 1 red\n";
     CHECK(
