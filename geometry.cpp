@@ -25,12 +25,17 @@ static void SetFaceNormal(const Ray *ray, vec3 outwardNormal, RayHit *hit) {
 //     the centre instead of subtracting two huge nearly equal numbers (Hearn & Baker);
 //   roots q = -(b + sign(b) sqrt(disc)), t0 = c0 / q, t1 = q / a: never subtract nearly equal
 //     numbers (Press et al., Numerical Recipes §5.6).
-// Returns the nearest root in (tMin, tMax) that is also provably positive (see below).
+// Returns the nearest root in (tMin, tMax). No root is discarded as "too close to 0": a ray that
+// leaves this sphere starts outside its rounding error (OffsetRayOrigin), so c0 has the right
+// sign and the root it would re-hit is negative; a probe that starts a hair outside the sphere
+// still sees it (HARD_CASES SPH-5, a hit at t = 3e-11).
 bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
     vec3 d = ray->dir;
     vec3 f = ray->origin - s->center;
+    assert((d.x != 0 || d.y != 0 || d.z != 0) && "ray direction must not be zero");
     real a = Dot(d, d);
-    assert(a > 0 && "ray direction must not be zero");
+    if (!(a > 0)) // |d| so small that d.d underflows (below 1e-154 in double), or NaN: no answer
+        return false;
     real b = Dot(f, d);
     real r2 = s->radius * s->radius;
 
@@ -41,32 +46,33 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
         return false;
 
     // Both roots without cancellation
+    real sqrtDisc = std::sqrt(disc);
     real c0 = Dot(f, f) - r2;
-    real q = -(b + std::copysign(std::sqrt(disc), b));
+    real q = -(b + std::copysign(sqrtDisc, b));
     if (q == 0) // the ray starts on the surface and is tangent to it
         return false;
     real t0 = c0 / q, t1 = q / a;
     if (t0 > t1)
         std::swap(t0, t1);
 
-    // A root smaller than the rounding error of c0 / q is indistinguishable from t = 0: the ray
-    // starts on this sphere. c0 carries at most 7 roundings of terms no larger than f.f + r^2
-    // (pbrt-v4 §6.8.3 bounds roots the same way, with interval arithmetic).
-    real tError = Gamma(7) * (Dot(f, f) + r2) / std::fabs(q);
-
     // Pick the nearest root inside (tMin, tMax)
+    bool nearRoot = true;
     real t = t0;
-    if (!(t > tMin && t > tError)) {
+    if (!(t > tMin)) {
         t = t1;
-        if (!(t > tMin && t > tError))
+        nearRoot = false;
+        if (!(t > tMin))
             return false;
     }
     if (!(t < tMax))
         return false;
 
-    // Put the hit point back on the sphere: this removes the error along the normal that
-    // o + t d carries (pbrt-v4 §6.8.5); what remains is a few roundings of its coordinates.
-    vec3 local = f + t * d;
+    // The hit point, relative to the centre: the line's closest point to the centre, then half a
+    // chord back (near root) or on (far root), t = -b/a -+ sqrt(disc)/a. Unlike f + t d, this
+    // never subtracts nearly equal numbers, so it stays right when the sphere is tiny and far
+    // away. Then put it back on the sphere (pbrt-v4 §6.8.5): what error remains lies along the
+    // surface, not across it, a few roundings of the coordinates.
+    vec3 local = offLine + ((nearRoot ? -sqrtDisc : sqrtDisc) / a) * d;
     local = (s->radius / Length(local)) * local;
     hit->t = t;
     hit->point = s->center + local;

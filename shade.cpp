@@ -54,6 +54,8 @@ static bool LightIsVisible(const Scene *scene, const RenderSettings *settings, c
     Ray shadow;
     shadow.origin = OffsetRayOrigin(hit, light->position - hit->point);
     shadow.dir = light->position - shadow.origin;
+    if (shadow.dir.x == 0 && shadow.dir.y == 0 && shadow.dir.z == 0)
+        return true; // the light sits within rounding distance of the surface: nothing between
     log->stats.shadow++;
     if (!log->tree)
         return !AnyHit(scene, settings->triangleMethod, &shadow, 0, 1);

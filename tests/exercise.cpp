@@ -4,15 +4,33 @@
 // Scenes larger than this are read but not rendered: the fuzzer should spend its time reading.
 static const size_t kMaxShapesToRender = 64;
 
+// Every ray of the tree and every hit must be finite numbers, and so must the colour.
+static bool TreeIsFinite(const std::vector<RayNode> &tree, std::string *why) {
+    for (const RayNode &n : tree) {
+        bool ok = IsFinite(n.ray.origin) && IsFinite(n.ray.dir) && IsFinite(n.light) &&
+                  (!n.hit || (IsFinite(n.record.point) && IsFinite(n.record.normal) &&
+                              std::isfinite(n.record.t)));
+        if (!ok) {
+            *why = "a ray of kind " + std::to_string(n.kind) + " or its hit is not finite";
+            return false;
+        }
+    }
+    return true;
+}
+
+// Renders 4 x 4 pixels, each as a recorded ray tree, and checks every number in it.
 static bool RenderTiny(const Scene *scene, std::string *why) {
     RenderSettings settings = {4, 4, 1, scene->depth, 1, TRIANGLE_WATERTIGHT, false, {}, {}};
     PlanRender(scene, &settings);
     for (int j = 0; j < 4; j++) {
         for (int i = 0; i < 4; i++) {
-            RayStats stats = {0, 0, 0, 0, 0};
-            color c = RenderPixel(scene, &settings, i, j, &stats);
-            if (!IsFinite(c)) {
-                *why = "pixel (" + std::to_string(i) + ", " + std::to_string(j) + ") is not finite";
+            std::vector<RayNode> tree;
+            TraceLog log = {RayStats{0, 0, 0, 0, 0}, &tree, -1};
+            Ray ray;
+            GetCameraRay(&settings.camera, 4, 4, SamplePosition(i, j, 0, 1), &ray);
+            TraceRay(scene, &settings, RAY_PRIMARY, &ray, RayChain{1, 1}, &log);
+            if (!TreeIsFinite(tree, why)) {
+                *why = "pixel (" + std::to_string(i) + ", " + std::to_string(j) + "): " + *why;
                 return false;
             }
         }
