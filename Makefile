@@ -13,7 +13,7 @@ PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
 PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 
 CORE = geometry shade render image scene_file probe views scene_default scene_test
-TESTS = $(basename $(notdir $(wildcard tests/test_*.cpp))) exercise
+TESTS = $(basename $(notdir $(wildcard tests/test_*.cpp))) exercise hard_cases
 
 # Object lists for one build variant: $(call objs,DIR,NAMES)
 objs = $(addprefix $(1)/,$(addsuffix .o,$(2)))

@@ -87,7 +87,8 @@ std::string ProbeErrorJson(const std::string &message) {
 // overflow. It is scaled by a power of two to a largest component in [1, 2): exact, and so is
 // converting t back, t = t' * scale, unless t itself leaves the range of numbers.
 std::string ProbeRayJson(const Scene *scene, const RenderSettings *settings, const Ray *ray) {
-    real largest = std::fmax(std::fabs(ray->dir.x), std::fmax(std::fabs(ray->dir.y), std::fabs(ray->dir.z)));
+    real largest =
+        std::fmax(std::fabs(ray->dir.x), std::fmax(std::fabs(ray->dir.y), std::fabs(ray->dir.z)));
     int exponent;
     std::frexp(largest, &exponent);
     Ray scaled = {ray->origin, std::ldexp(real(1), 1 - exponent) * ray->dir};

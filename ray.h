@@ -250,6 +250,7 @@ struct Image {
 // it then fills *hit and leaves it untouched on a miss. ray->dir need not be unit length, but
 // must not be zero.
 bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit);
+bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit);
 bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit);
 bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                              RayHit *hit);
@@ -308,9 +309,11 @@ bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen)
 void PlanRender(const Scene *scene, RenderSettings *settings);
 
 // Renders every pixel on settings->threads threads into *image; adds the rays cast to *stats.
+// Plans its own copy of the settings for this scene (PlanRender).
 void Render(const Scene *scene, const RenderSettings *settings, Image *image, RayStats *stats);
 
-// The colour of pixel (i, j): the average of its samples, before clamping.
+// The colour of pixel (i, j): the average of its samples, before clamping. `settings` must have
+// been planned for this scene (PlanRender).
 color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
                   RayStats *stats);
 

@@ -174,7 +174,11 @@ static void ShowProgress(const RowQueue *queue, int height, double seconds) {
     fflush(stderr);
 }
 
-void Render(const Scene *scene, const RenderSettings *settings, Image *image, RayStats *stats) {
+void Render(const Scene *scene, const RenderSettings *requested, Image *image, RayStats *stats) {
+    // Plan a copy for this scene, so settings planned for another scene can do no harm
+    RenderSettings planned = *requested;
+    PlanRender(scene, &planned);
+    const RenderSettings *settings = &planned;
     image->width = settings->width;
     image->height = settings->height;
     image->pixels.assign((size_t)settings->width * settings->height * 3, 0);

@@ -47,5 +47,7 @@ void TestProbes();
 void TestProgram();
 void TestCorpus();
 void TestEffects();
+void TestHardCases();
+void TestStability();
 
 #endif

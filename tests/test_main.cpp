@@ -54,6 +54,8 @@ int main() {
     TestCamera();
     TestAssignmentImage();
     TestEffects();
+    TestHardCases();
+    TestStability();
     TestSceneFiles();
     TestProbes();
     TestProgram();

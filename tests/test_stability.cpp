@@ -1,0 +1,137 @@
+// tests/test_stability.cpp -- the same picture at any scale, and never a NaN in a pixel.
+//
+// The assignment scene scaled by 1e-4 and 1e4 and moved far from the origin must render the
+// image it renders in place (99.8% of pixels within 2/255); random scenes with degenerate,
+// coincident, tiny and huge shapes must render finite colours everywhere.
+#include "test.h"
+
+// The scene with every position and length multiplied by `scale`, then moved by `shift`.
+static Scene Transformed(const Scene &original, real scale, vec3 shift) {
+    Scene s = original;
+    auto move = [&](vec3 p) { return scale * p + shift; };
+    for (Sphere &sp : s.spheres) {
+        sp.center = move(sp.center);
+        sp.radius *= scale;
+    }
+    for (Triangle &t : s.triangles)
+        t = {move(t.a), move(t.b), move(t.c), t.material};
+    for (Light &l : s.lights)
+        l.position = move(l.position);
+    s.camera.perspective.eye = move(s.camera.perspective.eye);
+    s.camera.perspective.distance *= scale;
+    s.camera.perspective.width *= scale;
+    return s;
+}
+
+// The share of pixels whose channels all lie within 2/255 of the other image's.
+static double ShareAlike(const Image &a, const Image &b) {
+    long alike = 0, pixels = (long)a.width * a.height;
+    for (long p = 0; p < pixels; p++) {
+        int largest = 0;
+        for (int c = 0; c < 3; c++)
+            largest = std::max(largest, std::abs(a.pixels[3 * p + c] - b.pixels[3 * p + c]));
+        alike += largest <= 2;
+    }
+    return (double)alike / pixels;
+}
+
+static void TestScaleInvariance() {
+    Scene scene;
+    BuildDefaultScene(&scene);
+    RenderSettings settings = TestSettings(&scene);
+    settings.threads = 2;
+    Image original;
+    RayStats stats = {0, 0, 0, 0, 0};
+    Render(&scene, &settings, &original, &stats);
+    struct {
+        real scale;
+        vec3 shift;
+        bool doubleOnly;
+    } variants[] = {{real(1e-4), {0, 0, 0}, false},
+                    {real(1e4), {0, 0, 0}, false},
+                    {1, {real(1e6), real(-2e6), real(3e6)}, true},
+                    {1, {real(1e9), real(1e9), real(-1e9)}, true},
+                    {real(1e-4), {real(1e3), 0, 0}, true},
+                    {real(1e-30), {0, 0, 0}, true},
+                    {real(1e30), {0, 0, 0}, true}};
+    for (const auto &v : variants) {
+        if (v.doubleOnly && sizeof(real) != sizeof(double))
+            continue;
+        Scene moved = Transformed(scene, v.scale, v.shift);
+        Image image;
+        Render(&moved, &settings, &image, &stats);
+        double share = ShareAlike(original, image);
+        char what[160];
+        snprintf(what, sizeof what,
+                 "assignment scene scaled by %g and moved to (%g, %g, %g): %.4f%% of pixels "
+                 "within 2/255 (need 99.8%%)",
+                 (double)v.scale, (double)v.shift.x, (double)v.shift.y, (double)v.shift.z,
+                 100 * share);
+        CHECK(share >= 0.998, what);
+    }
+}
+
+// Seeded random scenes: spheres and triangles of sizes from 1e-6 to 1e6, degenerate triangles
+// (repeated or collinear corners), coincident copies, glass, mirrors and Phong highlights.
+static Scene RandomScene(uint64_t seed) {
+    uint64_t state = seed;
+    auto uniform = [&state]() {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return real((state >> 40) * (1.0 / 16777216.0));
+    };
+    auto point = [&](real size) {
+        return vec3{(uniform() - real(0.5)) * size, (uniform() - real(0.5)) * size,
+                    -size * (real(0.2) + uniform())};
+    };
+    Scene s;
+    InitScene(&s);
+    s.shading = seed % 2 ? SHADING_PHONG : SHADING_FLOOR;
+    for (int k = 0; k < 4; k++) {
+        Material m = Matte(("m" + std::to_string(k)).c_str(), {uniform(), uniform(), uniform()});
+        m.specular = uniform();
+        m.shininess = uniform() * 100;
+        m.mirror = k == 1 ? uniform() : 0;
+        m.ior = k == 2 ? 1 + uniform() : 0;
+        s.materials.push_back(m);
+    }
+    for (int k = 0; k < 8; k++) {
+        real size = std::pow(real(10), std::floor(uniform() * 12) - 6);
+        s.spheres.push_back({point(size), size * (real(0.01) + uniform()), k % 4});
+        vec3 a = point(size), b = point(size), c = point(size);
+        int kind = k % 4; // 0: ordinary, 1: repeated corner, 2: collinear, 3: a coincident copy
+        Triangle t = {a, kind == 1 ? a : b, kind == 2 ? a + real(2) * (b - a) : c, k % 4};
+        if (kind == 2)
+            t.b = a + (b - a);
+        s.triangles.push_back(t);
+        if (kind == 3)
+            s.triangles.push_back(t);
+    }
+    s.spheres.push_back(s.spheres[0]); // a coincident sphere
+    s.lights = {{point(1), {1, 1, 1}}, {point(1000), {0.5, 0.5, 0.5}}};
+    return s;
+}
+
+static void TestNoNaN() {
+    int scenes = 0, badPixels = 0;
+    for (uint64_t seed = 1; seed <= 24; seed++) {
+        Scene scene = RandomScene(seed);
+        RenderSettings settings = TestSettings(&scene);
+        settings.width = settings.height = 24;
+        settings.samplesPerPixel = seed % 3 == 0 ? 4 : 1;
+        PlanRender(&scene, &settings);
+        for (int j = 0; j < 24; j++)
+            for (int i = 0; i < 24; i++) {
+                RayStats stats = {0, 0, 0, 0, 0};
+                badPixels += !IsFinite(RenderPixel(&scene, &settings, i, j, &stats));
+            }
+        scenes++;
+    }
+    CHECK(scenes == 24 && badPixels == 0,
+          "24 random scenes (degenerate, coincident, tiny and huge shapes, glass, mirrors): " +
+              std::to_string(badPixels) + " pixels not finite");
+}
+
+void TestStability() {
+    TestScaleInvariance();
+    TestNoNaN();
+}
