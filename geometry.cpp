@@ -21,8 +21,9 @@ static void SetFaceNormal(const Ray *ray, vec3 outwardNormal, RayHit *hit) {
 // a = d.d, b = f.d, c0 = f.f - r^2 (RTIOW v4 §6.2 uses the same half-b form).
 // Two fixes from Ray Tracing Gems ch. 7 (Haines et al. 2019), because the textbook form fails
 // for small spheres far away and for the near root:
-//   discriminant b^2 - a c0 = a (r^2 - |f - (b/a) d|^2): measure how far the line passes from
-//     the centre instead of subtracting two huge nearly equal numbers (Hearn & Baker);
+//   discriminant b^2 - a c0 = a r^2 - |f x d|^2 = a (r^2 - |f - (b/a) d|^2): measure how far the
+//     line passes from the centre instead of subtracting two huge nearly equal numbers (Hearn &
+//     Baker; the cross product gives the same distance without a division);
 //   roots q = -(b + sign(b) sqrt(disc)), t0 = c0 / q, t1 = q / a: never subtract nearly equal
 //     numbers (Press et al., Numerical Recipes §5.6).
 // Returns the nearest root in (tMin, tMax). No root is discarded as "too close to 0": a ray that
@@ -39,15 +40,21 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
     real b = Dot(f, d);
     real r2 = s->radius * s->radius;
 
-    // Reject if the line passes farther from the centre than the radius (NaN input lands here)
-    vec3 offLine = f - (b / a) * d;
-    real disc = a * (r2 - Dot(offLine, offLine));
+    // Reject a sphere behind the ray: origin outside (c0 > 0) and moving away (b > 0) means both
+    // roots are negative (their product c0/a > 0, their sum -2b/a < 0)
+    real c0 = Dot(f, f) - r2;
+    if (b > 0 && c0 > 0 && tMin >= 0)
+        return false;
+
+    // Reject if the line passes farther from the centre than the radius: disc = a r^2 - |f x d|^2,
+    // since |f x d| / |d| is that distance (NaN input lands here too)
+    vec3 fxd = Cross(f, d);
+    real disc = a * r2 - Dot(fxd, fxd);
     if (!(disc >= 0))
         return false;
 
     // Both roots without cancellation
     real sqrtDisc = std::sqrt(disc);
-    real c0 = Dot(f, f) - r2;
     real q = -(b + std::copysign(sqrtDisc, b));
     if (q == 0) // the ray starts on the surface and is tangent to it
         return false;
@@ -72,6 +79,7 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
     // never subtracts nearly equal numbers, so it stays right when the sphere is tiny and far
     // away. Then put it back on the sphere (pbrt-v4 §6.8.5): what error remains lies along the
     // surface, not across it, a few roundings of the coordinates.
+    vec3 offLine = f - (b / a) * d;
     vec3 local = offLine + ((nearRoot ? -sqrtDisc : sqrtDisc) / a) * d;
     local = (s->radius / Length(local)) * local;
     hit->t = t;
@@ -135,45 +143,56 @@ static void SetTriangleHit(const Triangle *tri, const Ray *ray, real t, real b0,
     hit->shape = SHAPE_TRIANGLE;
 }
 
+// The largest of three finite numbers (std::fmax is a library call that also handles NaN).
+static inline real Max3(real a, real b, real c) {
+    real m = a > b ? a : b;
+    return m > c ? m : c;
+}
+
 // Return no intersection if the triangle is degenerate (zero area): it has no normal.
 static bool IsDegenerate(const Triangle *tri) {
     vec3 n = Cross(tri->b - tri->a, tri->c - tri->a);
     return !(Dot(n, n) > 0) || !IsFinite(n);
 }
 
-// Watertight ray/triangle intersection (Woop, Benthin & Wald, "Watertight Ray/Triangle
-// Intersection", JCGT 2(1), 2013). Move the ray origin to 0, rename the axes so the ray runs
-// along +z, shear it onto the z axis; the ray then hits the triangle iff the 2D edge functions
-//   U = Cx By - Cy Bx,  V = Ax Cy - Ay Cx,  W = Bx Ay - By Ax
-// of the sheared corners agree in sign, and t = (U Az + V Bz + W Cz) / (U + V + W).
-// Why watertight: a corner shared by two triangles is transformed to the same numbers in both,
-// so a shared edge's function is the same number with the opposite sign, and the one case in
-// which rounding can lie, a value of exactly 0, is recomputed exactly. No epsilon anywhere.
-bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit) {
-    vec3 d = ray->dir;
-
-    // Rename the axes: kz is the largest |d| component; swap kx, ky if d[kz] < 0 to keep the
-    // winding of the triangle as seen by the ray
-    vec3 ad = Abs(d);
+// The per-ray half of the watertight test (Woop, Benthin & Wald 2013, §3): rename the axes so
+// kz is the largest |d| component (swapping kx and ky if d[kz] < 0, to keep the triangles'
+// winding), and the shear that turns the ray into the +z axis. It depends on the ray only, so
+// FindNearestHit computes it once per ray for all the triangles.
+void ShearRay(const Ray *ray, RayShear *shear) {
+    vec3 d = ray->dir, ad = Abs(d);
     int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
     int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
     real dz = Component(d, kz);
     assert(dz != 0 && "ray direction must not be zero");
     if (dz < 0)
         std::swap(kx, ky);
-    real sx = Component(d, kx) / dz, sy = Component(d, ky) / dz, sz = 1 / dz;
+    *shear = {kx, ky, kz, Component(d, kx) / dz, Component(d, ky) / dz, 1 / dz};
+}
 
+// Watertight ray/triangle intersection (Woop, Benthin & Wald, "Watertight Ray/Triangle
+// Intersection", JCGT 2(1), 2013). Move the ray origin to 0, rename the axes and shear so the
+// ray is the +z axis (ShearRay); the ray then hits the triangle iff the 2D edge functions
+//   U = Cx By - Cy Bx,  V = Ax Cy - Ay Cx,  W = Bx Ay - By Ax
+// of the sheared corners agree in sign, and t = (U Az + V Bz + W Cz) / (U + V + W).
+// Why watertight: a corner shared by two triangles is transformed to the same numbers in both,
+// so a shared edge's function is the same number with the opposite sign, and the one case in
+// which rounding can lie, a value of exactly 0, is recomputed exactly. No epsilon anywhere.
+bool IntersectShearedTriangle(const Triangle *tri, const Ray *ray, const RayShear *k, real tMin,
+                              real tMax, RayHit *hit) {
     // Translate the corners to the ray origin and shear them so the ray is the +z axis
     vec3 A = tri->a - ray->origin, B = tri->b - ray->origin, C = tri->c - ray->origin;
-    real ax = Component(A, kx) - sx * Component(A, kz),
-         ay = Component(A, ky) - sy * Component(A, kz);
-    real bx = Component(B, kx) - sx * Component(B, kz),
-         by = Component(B, ky) - sy * Component(B, kz);
-    real cx = Component(C, kx) - sx * Component(C, kz),
-         cy = Component(C, ky) - sy * Component(C, kz);
+    real Az = Component(A, k->kz), Bz = Component(B, k->kz), Cz = Component(C, k->kz);
+    real ax = Component(A, k->kx) - k->sx * Az, ay = Component(A, k->ky) - k->sy * Az;
+    real bx = Component(B, k->kx) - k->sx * Bz, by = Component(B, k->ky) - k->sy * Bz;
+    real cx = Component(C, k->kx) - k->sx * Cz, cy = Component(C, k->ky) - k->sy * Cz;
 
-    // The 2D edge functions; recompute exactly any that rounded to 0
-    real u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
+    // The 2D edge functions; recompute exactly any that rounded to 0. Two that disagree in sign
+    // already put the ray outside, before the third is computed
+    real u = cx * by - cy * bx, v = ax * cy - ay * cx;
+    if ((u < 0 && v > 0) || (u > 0 && v < 0))
+        return false;
+    real w = bx * ay - by * ax;
     if (u == 0 || v == 0 || w == 0) {
         u = ExactEdgeFunction(cx, cy, bx, by);
         v = ExactEdgeFunction(ax, ay, cx, cy);
@@ -188,7 +207,7 @@ bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax
         return false;
 
     // The distance along the ray: t = (U Az + V Bz + W Cz) / det, with z scaled by 1 / d[kz]
-    real az = sz * Component(A, kz), bz = sz * Component(B, kz), cz = sz * Component(C, kz);
+    real az = k->sz * Az, bz = k->sz * Bz, cz = k->sz * Cz;
     real t = (u * az + v * bz + w * cz) / det;
     if (!(t > tMin && t < tMax))
         return false;
@@ -196,17 +215,16 @@ bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax
     // Reject a t within its own rounding error of 0: the ray starts on this triangle. The error
     // of each step is bounded as in pbrt-v4 §6.8.4 ("conservative ray-triangle t"): the sheared
     // x and y carry the translated z before its scaling by 1 / d[kz] (rawZ), the scaled z its
-    // own roundings, then the edge functions errE. But t = (U za + V zb + W zc) / (U + V + W) is
+    // own roundings, then the edge functions errE. But t = (U az + V bz + W cz) / (U + V + W) is
     // a weighted average of the z's, with weights that sum to 1 whatever their errors; so the
     // weights' errors move t by at most their sum (6 errE / |det|, to first order) times half
     // the z's spread, not times the z's size. pbrt's size-based bound rejects a tiny triangle
     // far away (HARD_CASES TRI-9); this one keeps it and still rejects every re-hit.
-    real rawZ = std::fmax(std::fabs(Component(A, kz)),
-                          std::fmax(std::fabs(Component(B, kz)), std::fabs(Component(C, kz))));
-    real maxX = std::fmax(std::fabs(ax), std::fmax(std::fabs(bx), std::fabs(cx)));
-    real maxY = std::fmax(std::fabs(ay), std::fmax(std::fabs(by), std::fabs(cy)));
-    real maxZ = std::fmax(std::fabs(az), std::fmax(std::fabs(bz), std::fabs(cz)));
-    real spreadZ = std::fmax(az, std::fmax(bz, cz)) - std::fmin(az, std::fmin(bz, cz));
+    real rawZ = Max3(std::fabs(Az), std::fabs(Bz), std::fabs(Cz));
+    real maxX = Max3(std::fabs(ax), std::fabs(bx), std::fabs(cx));
+    real maxY = Max3(std::fabs(ay), std::fabs(by), std::fabs(cy));
+    real maxZ = Max3(std::fabs(az), std::fabs(bz), std::fabs(cz));
+    real spreadZ = Max3(az, bz, cz) + Max3(-az, -bz, -cz);
     real errX = Gamma(5) * (maxX + rawZ), errY = Gamma(5) * (maxY + rawZ);
     real errE = 2 * (Gamma(2) * maxX * maxY + errY * maxX + errX * maxY);
     real errT = Gamma(7) * maxZ + 3 * errE * spreadZ / std::fabs(det);
@@ -217,6 +235,12 @@ bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax
         return false;
     SetTriangleHit(tri, ray, t, u / det, v / det, w / det, hit);
     return true;
+}
+
+bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit) {
+    RayShear shear;
+    ShearRay(ray, &shear);
+    return IntersectShearedTriangle(tri, ray, &shear, tMin, tMax, hit);
 }
 
 // The handout's triangle test: solve a + beta (b - a) + gamma (c - a) = e + t d by Cramer's
@@ -256,26 +280,35 @@ bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, rea
     return true;
 }
 
-static bool HitTriangle(TriangleMethod method, const Triangle *tri, const Ray *ray, real tMin,
-                        real tMax, RayHit *hit) {
-    return method == TRIANGLE_CRAMER ? IntersectTriangleCramer(tri, ray, tMin, tMax, hit)
-                                     : IntersectTriangle(tri, ray, tMin, tMax, hit);
+static bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, real tMin, real tMax,
+                      RayHit *hit) {
+    return methods.sphere == SPHERE_TEXTBOOK ? IntersectSphereTextbook(s, ray, tMin, tMax, hit)
+                                             : IntersectSphere(s, ray, tMin, tMax, hit);
+}
+
+static bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray, const RayShear *shear,
+                        real tMin, real tMax, RayHit *hit) {
+    return methods.triangle == TRIANGLE_CRAMER
+               ? IntersectTriangleCramer(tri, ray, tMin, tMax, hit)
+               : IntersectShearedTriangle(tri, ray, shear, tMin, tMax, hit);
 }
 
 // The second handout's nearest hit over the list of shapes: every hit shrinks tMax, so each
 // later shape only counts if it is nearer. A tie keeps the earlier shape.
-bool FindNearestHit(const Scene *scene, TriangleMethod method, const Ray *ray, real tMin, real tMax,
+bool FindNearestHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax,
                     RayHit *hit) {
     bool found = false;
     for (size_t i = 0; i < scene->spheres.size(); i++) {
-        if (IntersectSphere(&scene->spheres[i], ray, tMin, tMax, hit)) {
+        if (HitSphere(methods, &scene->spheres[i], ray, tMin, tMax, hit)) {
             hit->index = (int)i;
             tMax = hit->t;
             found = true;
         }
     }
+    RayShear shear;
+    ShearRay(ray, &shear);
     for (size_t i = 0; i < scene->triangles.size(); i++) {
-        if (HitTriangle(method, &scene->triangles[i], ray, tMin, tMax, hit)) {
+        if (HitTriangle(methods, &scene->triangles[i], ray, &shear, tMin, tMax, hit)) {
             hit->index = (int)i;
             tMax = hit->t;
             found = true;
@@ -285,13 +318,15 @@ bool FindNearestHit(const Scene *scene, TriangleMethod method, const Ray *ray, r
 }
 
 // Any hit in (tMin, tMax), for shadow rays: the first blocker found ends the search.
-bool AnyHit(const Scene *scene, TriangleMethod method, const Ray *ray, real tMin, real tMax) {
+bool AnyHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax) {
     RayHit scratch;
     for (const Sphere &s : scene->spheres)
-        if (IntersectSphere(&s, ray, tMin, tMax, &scratch))
+        if (HitSphere(methods, &s, ray, tMin, tMax, &scratch))
             return true;
+    RayShear shear;
+    ShearRay(ray, &shear);
     for (const Triangle &tri : scene->triangles)
-        if (HitTriangle(method, &tri, ray, tMin, tMax, &scratch))
+        if (HitTriangle(methods, &tri, ray, &shear, tMin, tMax, &scratch))
             return true;
     return false;
 }

@@ -93,7 +93,7 @@ std::string ProbeRayJson(const Scene *scene, const RenderSettings *settings, con
     std::frexp(largest, &exponent);
     Ray scaled = {ray->origin, std::ldexp(real(1), 1 - exponent) * ray->dir};
     RayHit hit;
-    if (!FindNearestHit(scene, settings->triangleMethod, &scaled, 0, kInfinity, &hit))
+    if (!FindNearestHit(scene, settings->methods, &scaled, 0, kInfinity, &hit))
         return "{\"hit\":false}";
     hit.t = std::ldexp(hit.t, 1 - exponent);
     return HitJson(scene, &hit);

@@ -33,6 +33,8 @@ static const char *kUsage =
     "  --triangle watertight|cramer\n"
     "                           ray/triangle method: Woop-Benthin-Wald (default) or the\n"
     "                           handout's Cramer's rule\n"
+    "  --sphere stable|textbook ray/sphere method: Ray Tracing Gems ch. 7 (default) or the\n"
+    "                           textbook quadratic, kept only to show what it gets wrong\n"
     "  --view normal|depth|id|cost|shadow\n"
     "                           draw a debug view instead of the lit image\n"
     "  --stats                  print time, rays by kind, Mrays/s and the effects used to stderr\n"
@@ -53,7 +55,7 @@ static const char *kUsage =
 struct Options {
     std::string scene = "default", output;
     int width = 0, height = 0, spp = 1, depth = 0, threads = 0;
-    TriangleMethod triangleMethod = TRIANGLE_WATERTIGHT;
+    Methods methods = kRobustMethods;
     bool stats = false, help = false, version = false;
     bool probeRay = false, pixel = false, view = false, compare = false;
     real probe[6];
@@ -106,9 +108,16 @@ static bool ParseOption(const std::string &a, char **v, Options *opt, std::strin
         return ParseInt(v[0], 1, 1024, "--threads", &opt->threads, error);
     else if (a == "--triangle") {
         std::string m = v[0];
-        opt->triangleMethod = m == "cramer" ? TRIANGLE_CRAMER : TRIANGLE_WATERTIGHT;
+        opt->methods.triangle = m == "cramer" ? TRIANGLE_CRAMER : TRIANGLE_WATERTIGHT;
         if (m != "watertight" && m != "cramer") {
             *error = "--triangle must be watertight or cramer, not '" + m + "'";
+            return false;
+        }
+    } else if (a == "--sphere") {
+        std::string m = v[0];
+        opt->methods.sphere = m == "textbook" ? SPHERE_TEXTBOOK : SPHERE_STABLE;
+        if (m != "stable" && m != "textbook") {
+            *error = "--sphere must be stable or textbook, not '" + m + "'";
             return false;
         }
     } else if (a == "--view") {
@@ -154,10 +163,11 @@ static bool ParseOptions(int argc, char **argv, Options *opt, std::string *error
     static const struct {
         const char *name;
         int values;
-    } kOptions[] = {{"-o", 1},        {"--size", 1},     {"--spp", 1},     {"--depth", 1},
-                    {"--threads", 1}, {"--triangle", 1}, {"--view", 1},    {"--ray", 6},
-                    {"--rays", 1},    {"--pixel", 2},    {"--compare", 2}, {"--tolerance", 1},
-                    {"--stats", 0},   {"--help", 0},     {"-h", 0},        {"--version", 0}};
+    } kOptions[] = {{"-o", 1},          {"--size", 1},     {"--spp", 1},    {"--depth", 1},
+                    {"--threads", 1},   {"--triangle", 1}, {"--sphere", 1}, {"--view", 1},
+                    {"--ray", 6},       {"--rays", 1},     {"--pixel", 2},  {"--compare", 2},
+                    {"--tolerance", 1}, {"--stats", 0},    {"--help", 0},   {"-h", 0},
+                    {"--version", 0}};
     bool sceneGiven = false;
     for (int k = 1; k < argc; k++) {
         std::string a = argv[k];
@@ -330,7 +340,7 @@ int main(int argc, char **argv) {
     settings.depth = opt.depth ? opt.depth : scene.depth;
     unsigned hardware = std::thread::hardware_concurrency();
     settings.threads = opt.threads ? opt.threads : (hardware ? (int)hardware : 1);
-    settings.triangleMethod = opt.triangleMethod;
+    settings.methods = opt.methods;
     settings.showProgress = true;
     PlanRender(&scene, &settings);
 

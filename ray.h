@@ -60,7 +60,12 @@ inline vec3 Abs(vec3 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)
 inline vec3 Max(vec3 a, vec3 b) {
     return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)};
 }
-inline real Component(vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
+// a.x, a.y or a.z for axis 0, 1, 2: an indexed load, not a chain of branches (the watertight
+// triangle test picks its axes per ray)
+inline real Component(vec3 a, int axis) {
+    const real c[3] = {a.x, a.y, a.z};
+    return c[axis];
+}
 inline bool IsFinite(vec3 a) {
     return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
 }
@@ -168,11 +173,21 @@ struct Scene {
     std::vector<Light> lights;
 };
 
-// Which ray/triangle routine FindNearestHit and AnyHit use.
+// Which ray/shape routines FindNearestHit and AnyHit use: the robust defaults, or the handout's
+// and the textbook's forms, kept to teach with and to show in `make bench` what they cost.
 enum TriangleMethod {
     TRIANGLE_WATERTIGHT, // Woop, Benthin & Wald 2013 (the default)
     TRIANGLE_CRAMER      // the handout's Cramer's rule with variables A..M
 };
+enum SphereMethod {
+    SPHERE_STABLE,  // Ray Tracing Gems ch. 7 (the default)
+    SPHERE_TEXTBOOK // (-b -+ sqrt(b^2 - ac)) / a, for the benchmark only
+};
+struct Methods {
+    SphereMethod sphere;
+    TriangleMethod triangle;
+};
+const Methods kRobustMethods = {SPHERE_STABLE, TRIANGLE_WATERTIGHT};
 
 // Which effects a render can need, decided once per render from the scene and the settings
 // (PlanEffects); the shading code skips whole paths for the absent ones.
@@ -190,10 +205,10 @@ struct RenderSettings {
     int samplesPerPixel; // primary rays per pixel, on a regular grid
     int depth;           // most rays in one chain, primary included
     int threads;         // worker threads; the image never depends on it
-    TriangleMethod triangleMethod;
-    bool showProgress; // redraw a progress line on standard error
-    Effects effects;   // filled by PlanRender
-    Camera camera;     // the scene's camera for this image size, filled by PlanRender
+    Methods methods;     // ray/shape routines (kRobustMethods unless comparing)
+    bool showProgress;   // redraw a progress line on standard error
+    Effects effects;     // filled by PlanRender
+    Camera camera;       // the scene's camera for this image size, filled by PlanRender
 };
 
 enum RayKind { RAY_PRIMARY, RAY_SHADOW, RAY_REFLECTION, RAY_REFRACTION };
@@ -255,13 +270,23 @@ bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax
 bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                              RayHit *hit);
 
+// The watertight test in two halves: ShearRay depends on the ray only (computed once per ray),
+// IntersectShearedTriangle on the triangle; IntersectTriangle is the two in a row.
+struct RayShear {
+    int kx, ky, kz;  // axes renamed so the ray runs along +kz
+    real sx, sy, sz; // shear d[kx]/d[kz], d[ky]/d[kz], and 1/d[kz]
+};
+void ShearRay(const Ray *ray, RayShear *shear);
+bool IntersectShearedTriangle(const Triangle *tri, const Ray *ray, const RayShear *shear, real tMin,
+                              real tMax, RayHit *hit);
+
 // The nearest hit over every shape of the scene with t in (tMin, tMax): the one loop that serves
 // primary, reflection and refraction rays.
-bool FindNearestHit(const Scene *scene, TriangleMethod method, const Ray *ray, real tMin, real tMax,
+bool FindNearestHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax,
                     RayHit *hit);
 
 // True if any shape is hit with t in (tMin, tMax); stops at the first. Serves shadow rays.
-bool AnyHit(const Scene *scene, TriangleMethod method, const Ray *ray, real tMin, real tMax);
+bool AnyHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax);
 
 // The origin for a ray leaving hit->point in direction dir: the point pushed off the surface by
 // its own error bound, to the side dir goes, so the new ray cannot hit the surface it leaves.

@@ -58,12 +58,12 @@ static bool LightIsVisible(const Scene *scene, const RenderSettings *settings, c
         return true; // the light sits within rounding distance of the surface: nothing between
     log->stats.shadow++;
     if (!log->tree)
-        return !AnyHit(scene, settings->triangleMethod, &shadow, 0, 1);
+        return !AnyHit(scene, settings->methods, &shadow, 0, 1);
 
     // Recording a ray tree: find the nearest blocker, so the tree can show which shape it is
     int node = RecordRay(RAY_SHADOW, &shadow, log);
     RayNode *n = &(*log->tree)[node];
-    n->hit = FindNearestHit(scene, settings->triangleMethod, &shadow, 0, 1, &n->record);
+    n->hit = FindNearestHit(scene, settings->methods, &shadow, 0, 1, &n->record);
     n->light = n->hit ? color{0, 0, 0} : light->intensity;
     return !n->hit;
 }
@@ -210,7 +210,7 @@ color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind,
     CountRay(kind, &log->stats);
     int node = RecordRay(kind, ray, log);
     RayHit hit;
-    bool found = FindNearestHit(scene, settings->triangleMethod, ray, 0, kInfinity, &hit);
+    bool found = FindNearestHit(scene, settings->methods, ray, 0, kInfinity, &hit);
     color result = scene->background;
     if (found) {
         int parent = log->current;

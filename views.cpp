@@ -49,7 +49,7 @@ static color ShadowMask(const Scene *scene, const RenderSettings *settings, cons
         }
         Ray shadow = {OffsetRayOrigin(hit, toLight), {}};
         shadow.dir = light.position - shadow.origin;
-        bool blocked = AnyHit(scene, settings->triangleMethod, &shadow, 0, 1);
+        bool blocked = AnyHit(scene, settings->methods, &shadow, 0, 1);
         sum = sum + (blocked ? color{1, 0, 0} : color{1, 1, 1});
     }
     return scene->lights.empty() ? sum : (real(1) / scene->lights.size()) * sum;
@@ -71,7 +71,7 @@ static color ViewValue(const Scene *scene, const RenderSettings *settings, ViewK
     }
     RayHit hit;
     *scalar = -1; // no hit
-    if (!FindNearestHit(scene, settings->triangleMethod, &ray, 0, kInfinity, &hit))
+    if (!FindNearestHit(scene, settings->methods, &ray, 0, kInfinity, &hit))
         return {0, 0, 0};
     *scalar = hit.t * Length(ray.dir); // distance from the eye
     if (view == VIEW_NORMAL)

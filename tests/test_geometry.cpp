@@ -169,13 +169,12 @@ static void TestSphereHitRecord() {
     scene.spheres = {{{0, 0, -10}, 1, 3}, {{0, 0, -5}, 1, 2}};
     Ray ray = {{0, 0, 0}, {0, 0, -1}};
     RayHit hit;
-    bool got = FindNearestHit(&scene, TRIANGLE_WATERTIGHT, &ray, 0, kInfinity, &hit);
+    bool got = FindNearestHit(&scene, kRobustMethods, &ray, 0, kInfinity, &hit);
     CHECK(got && hit.shape == SHAPE_SPHERE && hit.index == 1 && hit.material == 2,
           "nearest of two spheres in a row is the second in the list, at t = 4");
     CHECK_NEAR(hit.t, 4, 4 * kRelTol, "nearest of two spheres: t = 4");
     CHECK_NEAR(hit.point.z, -4, 4 * kRelTol, "hit point on the near pole, z = -4");
-    CHECK(AnyHit(&scene, TRIANGLE_WATERTIGHT, &ray, 0, 5) &&
-              !AnyHit(&scene, TRIANGLE_WATERTIGHT, &ray, 0, 4),
+    CHECK(AnyHit(&scene, kRobustMethods, &ray, 0, 5) && !AnyHit(&scene, kRobustMethods, &ray, 0, 4),
           "any hit: a blocker at t = 4 counts for tMax = 5, not for the open bound tMax = 4");
 }
 

@@ -30,7 +30,7 @@ RenderSettings TestSettings(const Scene *scene) {
     s.samplesPerPixel = 1;
     s.depth = scene->depth;
     s.threads = 1;
-    s.triangleMethod = TRIANGLE_WATERTIGHT;
+    s.methods = kRobustMethods;
     s.showProgress = false;
     PlanRender(scene, &s);
     return s;

@@ -70,7 +70,7 @@ static const BadScene kBadScenes[] = {
     {"light 0 0 0 1 1", 1, "missing number"},
     {"light 0 0 0 1 1 2", 1, "[0, 1]"},
     {"light 0 0 0 1 1 1 1", 1, "extra value"},
-    {"\x01\x02\xff\xfe garbage", 1, "unknown keyword '????'"},
+    {"\x01\x02\xff\xfe garbage", 1, "unknown keyword '?\?\?\?'"},
     {"# ok\r\nsize 64 64\r\nbogus\r\n", 3, "unknown keyword 'bogus'"}, // CRLF counts lines too
 };
 

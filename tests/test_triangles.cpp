@@ -133,10 +133,10 @@ static void TestFanIsWatertight() {
         Ray ray = {{Uniform(&rng) * 2 - 1, Uniform(&rng) * 2 - 1, 1}, {}};
         ray.dir = center - ray.origin; // through the shared vertex
         RayHit hit;
-        missesVertex += !FindNearestHit(&fan, TRIANGLE_WATERTIGHT, &ray, 0, kInfinity, &hit);
+        missesVertex += !FindNearestHit(&fan, kRobustMethods, &ray, 0, kInfinity, &hit);
         const Triangle &t = fan.triangles[k % n];
         ray.dir = (t.a + Uniform(&rng) * (t.b - t.a)) - ray.origin; // through a shared edge
-        missesEdge += !FindNearestHit(&fan, TRIANGLE_WATERTIGHT, &ray, 0, kInfinity, &hit);
+        missesEdge += !FindNearestHit(&fan, kRobustMethods, &ray, 0, kInfinity, &hit);
     }
     CHECK(missesVertex == 0, "2000 rays through a fan's shared vertex all hit (" +
                                  std::to_string(missesVertex) + " slipped through)");
