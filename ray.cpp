@@ -27,7 +27,11 @@ static const char *kUsage =
     "  -o FILE                  output PNG (default: reference.png for default, test.png for\n"
     "                           test, NAME.png for a file NAME.scene)\n"
     "  --size W[xH]             image size in pixels, 1..16384 (H defaults to W)\n"
-    "  --spp N                  samples per pixel on a regular grid, 1..65536 (default 1)\n"
+    "  --spp N                  samples per pixel, 1..65536 (default 1: the pixel centre)\n"
+    "  --aa grid|jitter|adaptive\n"
+    "                           where the samples go: a regular grid (default), one random\n"
+    "                           point per grid cell, or 5 first (centre and corners) and N\n"
+    "                           only where those differ\n"
     "  --depth N                most rays in one chain, primary included, 1..1000 (default 10)\n"
     "  --threads N              worker threads, 1..1024 (default: all hardware threads)\n"
     "  --triangle watertight|cramer\n"
@@ -55,6 +59,7 @@ static const char *kUsage =
 struct Options {
     std::string scene = "default", output;
     int width = 0, height = 0, spp = 1, depth = 0, threads = 0;
+    SampleMethod sampling = SAMPLES_GRID;
     Methods methods = kRobustMethods;
     bool stats = false, help = false, version = false;
     bool probeRay = false, pixel = false, view = false, compare = false;
@@ -113,6 +118,15 @@ static bool ParseOption(const std::string &a, char **v, Options *opt, std::strin
             *error = "--triangle must be watertight or cramer, not '" + m + "'";
             return false;
         }
+    } else if (a == "--aa") {
+        std::string m = v[0];
+        opt->sampling = m == "jitter"     ? SAMPLES_JITTER
+                        : m == "adaptive" ? SAMPLES_ADAPTIVE
+                                          : SAMPLES_GRID;
+        if (m != "grid" && m != "jitter" && m != "adaptive") {
+            *error = "--aa must be grid, jitter or adaptive, not '" + m + "'";
+            return false;
+        }
     } else if (a == "--sphere") {
         std::string m = v[0];
         opt->methods.sphere = m == "textbook" ? SPHERE_TEXTBOOK : SPHERE_STABLE;
@@ -163,11 +177,11 @@ static bool ParseOptions(int argc, char **argv, Options *opt, std::string *error
     static const struct {
         const char *name;
         int values;
-    } kOptions[] = {{"-o", 1},          {"--size", 1},     {"--spp", 1},    {"--depth", 1},
-                    {"--threads", 1},   {"--triangle", 1}, {"--sphere", 1}, {"--view", 1},
-                    {"--ray", 6},       {"--rays", 1},     {"--pixel", 2},  {"--compare", 2},
-                    {"--tolerance", 1}, {"--stats", 0},    {"--help", 0},   {"-h", 0},
-                    {"--version", 0}};
+    } kOptions[] = {{"-o", 1},        {"--size", 1},      {"--spp", 1},      {"--depth", 1},
+                    {"--threads", 1}, {"--aa", 1},        {"--triangle", 1}, {"--sphere", 1},
+                    {"--view", 1},    {"--ray", 6},       {"--rays", 1},     {"--pixel", 2},
+                    {"--compare", 2}, {"--tolerance", 1}, {"--stats", 0},    {"--help", 0},
+                    {"-h", 0},        {"--version", 0}};
     bool sceneGiven = false;
     for (int k = 1; k < argc; k++) {
         std::string a = argv[k];
@@ -337,6 +351,7 @@ int main(int argc, char **argv) {
     settings.width = opt.width ? opt.width : scene.width;
     settings.height = opt.height ? opt.height : scene.height;
     settings.samplesPerPixel = opt.spp;
+    settings.sampling = opt.sampling;
     settings.depth = opt.depth ? opt.depth : scene.depth;
     unsigned hardware = std::thread::hardware_concurrency();
     settings.threads = opt.threads ? opt.threads : (hardware ? (int)hardware : 1);

@@ -199,16 +199,30 @@ struct Effects {
     bool antialiasing; // more than one sample per pixel
 };
 
+// Where a pixel's samples go (--aa).
+enum SampleMethod {
+    SAMPLES_GRID,    // a regular grid of cell centres
+    SAMPLES_JITTER,  // one random point in each grid cell (stratified), seeded by the pixel
+    SAMPLES_ADAPTIVE // centre and corners, then the rest jittered only where those five disagree
+};
+
+// Adaptive sampling refines a pixel when its first five samples (centre and corners) differ by
+// more than this in a channel (0..1): 1/64 is four 8-bit steps. Measured on the assignment image
+// at 16 spp, 1/64 already matches the grid's error; 1/256 or 1/1024 cost more time and change
+// the error by less than 0.1%.
+const real kAdaptiveContrast = real(1) / 64;
+
 // How one render is done; filled from the scene and the command line.
 struct RenderSettings {
     int width, height;   // image size in pixels
-    int samplesPerPixel; // primary rays per pixel, on a regular grid
-    int depth;           // most rays in one chain, primary included
-    int threads;         // worker threads; the image never depends on it
-    Methods methods;     // ray/shape routines (kRobustMethods unless comparing)
-    bool showProgress;   // redraw a progress line on standard error
-    Effects effects;     // filled by PlanRender
-    Camera camera;       // the scene's camera for this image size, filled by PlanRender
+    int samplesPerPixel; // primary rays per pixel (the most, for adaptive sampling)
+    SampleMethod sampling;
+    int depth;         // most rays in one chain, primary included
+    int threads;       // worker threads; the image never depends on it
+    Methods methods;   // ray/shape routines (kRobustMethods unless comparing)
+    bool showProgress; // redraw a progress line on standard error
+    Effects effects;   // filled by PlanRender
+    Camera camera;     // the scene's camera for this image size, filled by PlanRender
 };
 
 enum RayKind { RAY_PRIMARY, RAY_SHADOW, RAY_REFLECTION, RAY_REFRACTION };

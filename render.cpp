@@ -79,23 +79,6 @@ uint8_t ToByte(real c) {
     return (uint8_t)std::lround(c * 255);
 }
 
-// Sample s of n inside the unit pixel, on a regular grid that holds exactly n points: `rows` =
-// floor(sqrt(n)) rows, each with n / rows points (the first rows take one fewer when n is not a
-// multiple), every point at the centre of its cell. n = 1 gives the pixel centre (the handout's
-// method), n = k * k the usual k x k grid.
-static vec2 GridSample(int s, int n) {
-    int rows = (int)std::sqrt((double)n);
-    while ((rows + 1) * (rows + 1) <= n) // guard sqrt rounding for large perfect squares
-        rows++;
-    // Row r holds the samples [n * r / rows, n * (r + 1) / rows)
-    int row = 0;
-    while ((long long)n * (row + 1) / rows <= s)
-        row++;
-    int first = (int)((long long)n * row / rows);
-    int count = (int)((long long)n * (row + 1) / rows) - first;
-    return {(real(s - first) + real(0.5)) / count, (real(row) + real(0.5)) / rows};
-}
-
 static void AddStats(const RayStats *from, RayStats *to) {
     to->primary += from->primary;
     to->shadow += from->shadow;
@@ -104,24 +87,113 @@ static void AddStats(const RayStats *from, RayStats *to) {
     to->specularTerms += from->specularTerms;
 }
 
+// Cell s of n inside the unit pixel, on a regular grid that holds exactly n cells: `rows` =
+// floor(sqrt(n)) rows, each with n / rows cells (the first rows take one fewer when n is not a
+// multiple). `inCell` places the sample in its cell: (0.5, 0.5) is the centre. n = 1 is the
+// pixel centre (the handout's method), n = k * k the usual k x k grid.
+static vec2 CellPosition(int s, int n, vec2 inCell) {
+    int rows = (int)std::sqrt((double)n);
+    while ((rows + 1) * (rows + 1) <= n) // guard sqrt rounding for large perfect squares
+        rows++;
+    // Row r holds the cells [n r / rows, n (r + 1) / rows); start from the estimate s rows / n
+    int row = (int)((long long)s * rows / n);
+    while (row > 0 && (long long)n * row / rows > s)
+        row--;
+    while ((long long)n * (row + 1) / rows <= s)
+        row++;
+    int first = (int)((long long)n * row / rows);
+    int count = (int)((long long)n * (row + 1) / rows) - first;
+    return {(real(s - first) + inCell.x) / count, (real(row) + inCell.y) / rows};
+}
+
 vec2 SamplePosition(int i, int j, int s, int n) {
-    vec2 offset = n == 1 ? vec2{real(0.5), real(0.5)} : GridSample(s, n);
-    return {i + offset.x, j + offset.y};
+    vec2 p = CellPosition(s, n, {real(0.5), real(0.5)});
+    return {i + p.x, j + p.y};
+}
+
+// A random point in [0, 1)^2 that depends only on the pixel, the sample and a stream number, so
+// every thread draws the same one: SplitMix64's finaliser (Steele, Lea & Flood, "Fast Splittable
+// Pseudorandom Number Generators", OOPSLA 2014) applied to the four numbers in turn.
+static vec2 HashPoint(int i, int j, int s, int stream) {
+    uint64_t z = 0;
+    for (uint64_t word : {(uint64_t)i, (uint64_t)j, (uint64_t)s, (uint64_t)stream}) {
+        z += word + 0x9e3779b97f4a7c15ULL;
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+        z ^= z >> 31;
+    }
+    return {real((z >> 40) * (1.0 / 16777216.0)),
+            real(((z >> 16) & 0xffffff) * (1.0 / 16777216.0))};
+}
+
+// Sample s of n of pixel (i, j), jittered: a random point in its grid cell (stratified).
+static vec2 JitterPosition(int i, int j, int s, int n, int stream) {
+    vec2 p = CellPosition(s, n, HashPoint(i, j, s, stream));
+    return {i + p.x, j + p.y};
+}
+
+static color TraceSample(const Scene *scene, const RenderSettings *settings, vec2 position,
+                         TraceLog *log) {
+    Ray ray;
+    GetCameraRay(&settings->camera, settings->width, settings->height, position, &ray);
+    return TraceRay(scene, settings, RAY_PRIMARY, &ray, RayChain{1, 1}, log);
+}
+
+// Whether samples differ, in any channel clamped to [0, 1], by more than kAdaptiveContrast.
+static bool Disagree(const color *c, int count) {
+    for (int channel = 0; channel < 3; channel++) {
+        real lo = 1, hi = 0;
+        for (int k = 0; k < count; k++) {
+            real v = std::min(real(1), std::max(real(0), Component(c[k], channel)));
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+        }
+        if (hi - lo > kAdaptiveContrast)
+            return true;
+    }
+    return false;
+}
+
+// Adaptive sampling with a budget of n: first the pixel's four corners and its centre. An edge
+// or a shadow border that crosses the pixel separates at least one corner from the rest; where
+// all five agree, the weighted average (centre 1/2, corners 1/8 each) is the pixel. Where they
+// disagree, n - 5 jittered samples follow and all n are averaged.
+static color AdaptivePixel(const Scene *scene, const RenderSettings *settings, int i, int j,
+                           TraceLog *log) {
+    int n = settings->samplesPerPixel;
+    const vec2 firstPositions[5] = {{0.5, 0.5}, {0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    color first[5], corners = {0, 0, 0};
+    for (int s = 0; s < 5; s++) {
+        vec2 p = firstPositions[s];
+        first[s] = TraceSample(scene, settings, {i + p.x, j + p.y}, log);
+        if (s > 0)
+            corners = corners + first[s];
+    }
+    if (!Disagree(first, 5))
+        return real(0.5) * first[0] + real(0.125) * corners;
+    color sum = first[0] + corners;
+    for (int s = 0; s < n - 5; s++)
+        sum = sum + TraceSample(scene, settings, JitterPosition(i, j, s, n - 5, 1), log);
+    return (real(1) / n) * sum;
 }
 
 color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
                   RayStats *stats) {
     TraceLog log = {RayStats{0, 0, 0, 0, 0}, nullptr, -1};
-    color sum = {0, 0, 0};
     int n = settings->samplesPerPixel;
-    for (int s = 0; s < n; s++) {
-        Ray ray;
-        GetCameraRay(&settings->camera, settings->width, settings->height,
-                     SamplePosition(i, j, s, n), &ray);
-        sum = sum + TraceRay(scene, settings, RAY_PRIMARY, &ray, RayChain{1, 1}, &log);
+    color result = {0, 0, 0};
+    if (settings->sampling == SAMPLES_ADAPTIVE && n > 5) {
+        result = AdaptivePixel(scene, settings, i, j, &log);
+    } else {
+        bool jitter = settings->sampling != SAMPLES_GRID && n > 1;
+        for (int s = 0; s < n; s++) {
+            vec2 p = jitter ? JitterPosition(i, j, s, n, 0) : SamplePosition(i, j, s, n);
+            result = result + TraceSample(scene, settings, p, &log);
+        }
+        result = (real(1) / n) * result;
     }
     AddStats(&log.stats, stats);
-    return (real(1) / n) * sum;
+    return result;
 }
 
 static void RenderRow(const Scene *scene, const RenderSettings *settings, int j, Image *image,

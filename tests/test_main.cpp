@@ -28,6 +28,7 @@ RenderSettings TestSettings(const Scene *scene) {
     s.width = scene->width;
     s.height = scene->height;
     s.samplesPerPixel = 1;
+    s.sampling = SAMPLES_GRID;
     s.depth = scene->depth;
     s.threads = 1;
     s.methods = kRobustMethods;
