@@ -86,7 +86,17 @@ fuzz: build/fuzz/fuzz_scene
 	build/fuzz/fuzz_scene -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 \
 	    -artifact_prefix=build/fuzz/ build/fuzz/corpus tests/corpus
 
-bench: ray ray_float
+# The benchmark programs: bench/bench.cpp and report.cpp with the core and the hard-case suite,
+# once in double and once in float.
+BENCH_OBJS = bench/bench bench/report tests/hard_cases
+
+build/double/rtbench: $(call objs,build/double,$(BENCH_OBJS)) $(DOUBLE_CORE)
+	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
+
+build/float/rtbench: $(call objs,build/float,$(BENCH_OBJS)) $(FLOAT_CORE)
+	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
+
+bench: ray ray_float build/double/rtbench build/float/rtbench
 	@sh bench/bench.sh
 
 clean:
@@ -94,4 +104,4 @@ clean:
 
 .PHONY: all test check sanitize fuzz bench clean
 
--include $(wildcard build/*/*.d build/*/tests/*.d)
+-include $(wildcard build/*/*.d build/*/tests/*.d build/*/bench/*.d)

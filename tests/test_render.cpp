@@ -84,6 +84,32 @@ void TestAssignmentImage() {
           "ray counts do not depend on the thread count");
     CHECK(stats1.refraction == 0, "no glass in the assignment scene: no refraction rays");
 
+    // Jittered and adaptive samples are seeded by the pixel: the same bytes on 1 and 2 threads
+    settings.width = settings.height = 64;
+    settings.samplesPerPixel = 16;
+    for (SampleMethod method : {SAMPLES_JITTER, SAMPLES_ADAPTIVE}) {
+        settings.sampling = method;
+        settings.threads = 1;
+        RayStats a = {0, 0, 0, 0, 0}, b = {0, 0, 0, 0, 0};
+        Render(&scene, &settings, &one, &a);
+        settings.threads = 2;
+        Render(&scene, &settings, &two, &b);
+        const char *name = method == SAMPLES_JITTER ? "jitter" : "adaptive";
+        CHECK(one.pixels == two.pixels && a.primary == b.primary,
+              std::string("--aa ") + name + " 16 spp: identical bytes on 1 and 2 threads");
+        if (method == SAMPLES_ADAPTIVE)
+            CHECK(a.primary > 64 * 64 * 5 && a.primary < 64 * 64 * 16,
+                  "--aa adaptive 16 spp: between 5 and 16 primary rays per pixel (" +
+                      std::to_string(a.primary) + " for 4096 pixels)");
+    }
+    // Where nothing varies (an empty scene), adaptive sampling stops at its first 5 samples
+    Scene empty;
+    InitScene(&empty);
+    RayStats e = {0, 0, 0, 0, 0};
+    Render(&empty, &settings, &one, &e);
+    CHECK(e.primary == 64 * 64 * 5, "--aa adaptive on an empty scene: exactly 5 rays per pixel");
+    settings.sampling = SAMPLES_GRID;
+    settings.threads = 1;
     // 4 samples per pixel: exactly 4 primary rays per pixel
     settings.samplesPerPixel = 4;
     settings.width = settings.height = 64;

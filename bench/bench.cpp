@@ -1,0 +1,225 @@
+// bench/bench.cpp -- what accuracy costs in time (`make bench`, issue 6).
+//
+//   bench rows DIR      renders every row this build can (double: references, anti-aliasing,
+//                       triangle and sphere methods, depth; both builds: precision) and prints
+//                       one CSV line per row; references are DIR/ref_SCENE.png, made by the
+//                       double build and read by the float build
+//   bench report DIR    reads DIR/results.csv, writes DIR/results.md and DIR/accuracy_vs_time.svg
+//   bench raw PNG RGB   the pixels of a PNG as a raw RGB file
+//   bench pngfloor RGB PNG   writes the raw 512 x 512 RGB file as a PNG, nothing else: the floor
+//                       for the whole-process time of `ray`
+//
+// Every time is the median of kRuns renders in this process (render only, all threads); errors
+// are against a converged reference: double, 256 samples per pixel on a grid.
+#include "../tests/hard_cases.h"
+#include "ray.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+static const int kRuns = 5;
+static const int kReferenceSpp = 256;
+static const char *kPrecision = sizeof(real) == sizeof(double) ? "double" : "float";
+
+struct BenchScene {
+    const char *name;
+    int size; // the test scene's 139 triangles make it ~10x slower: it runs at 256 x 256
+    void (*build)(Scene *);
+};
+static const BenchScene kScenes[] = {{"assignment", 512, BuildDefaultScene},
+                                     {"test", 256, BuildTestScene}};
+
+static RenderSettings Settings(const BenchScene &b, int spp, SampleMethod sampling) {
+    unsigned hardware = std::thread::hardware_concurrency();
+    RenderSettings s = {b.size,         b.size, spp, sampling, 10, hardware ? (int)hardware : 1,
+                        kRobustMethods, false,  {},  {}};
+    return s;
+}
+
+// Renders kRuns times; returns the median seconds, the last image and its rays.
+static double TimeRender(const Scene *scene, const RenderSettings *s, Image *image,
+                         uint64_t *rays) {
+    std::vector<double> times;
+    for (int k = 0; k < kRuns; k++) {
+        RayStats stats = {0, 0, 0, 0, 0};
+        auto start = std::chrono::steady_clock::now();
+        Render(scene, s, image, &stats);
+        times.push_back(
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        *rays = stats.primary + stats.shadow + stats.reflection + stats.refraction;
+    }
+    std::sort(times.begin(), times.end());
+    return times[kRuns / 2];
+}
+
+// RMSE and PSNR over channels, and the share of pixels off by more than 1/255 and 8/255.
+static void ErrorOf(const Image *image, const Image *reference, double *rmse, double *psnr,
+                    double *off1, double *off8) {
+    ImageDifference d1, d8;
+    Image heat;
+    CompareImages(image, reference, 1, &d1, &heat);
+    CompareImages(image, reference, 8, &d8, &heat);
+    double pixels = (double)image->width * image->height;
+    *rmse = d1.rmse;
+    *psnr = d1.psnr;
+    *off1 = d1.pixelsOver / pixels;
+    *off8 = d8.pixelsOver / pixels;
+}
+
+// A heat map of |image - reference| scaled so that 32/255 is white: small errors stay visible.
+static void WriteHeatMap(const char *path, const Image *image, const Image *reference) {
+    Image heat = *image;
+    for (size_t k = 0; k + 2 < heat.pixels.size(); k += 3) {
+        int largest = 0;
+        for (int c = 0; c < 3; c++)
+            largest = std::max(largest, std::abs(image->pixels[k + c] - reference->pixels[k + c]));
+        color h = HeatColor(std::min(real(1), real(largest) / 32));
+        heat.pixels[k] = ToByte(h.x), heat.pixels[k + 1] = ToByte(h.y),
+        heat.pixels[k + 2] = ToByte(h.z);
+    }
+    std::string error;
+    WritePng(path, &heat, &error);
+}
+
+// One row: render, time, compare, print the CSV line and a progress line.
+static void Row(const std::string &dir, const BenchScene &b, const Scene *scene, const char *knob,
+                const std::string &setting, const RenderSettings *s, const Image *reference,
+                const char *heatMap) {
+    Image image;
+    uint64_t rays = 0;
+    double seconds = TimeRender(scene, s, &image, &rays);
+    double rmse, psnr, off1, off8;
+    ErrorOf(&image, reference, &rmse, &psnr, &off1, &off8);
+    printf("%s,%s,%s,%d,%.5f,%llu,%.6f,%.3f,%.6f,%.6f\n", b.name, knob, setting.c_str(),
+           s->samplesPerPixel, seconds, (unsigned long long)rays, rmse, psnr, off1, off8);
+    fflush(stdout);
+    fprintf(stderr, "bench: %-10s %-10s %-28s %4d spp %8.3f s  rmse %.4f\n", b.name, knob,
+            setting.c_str(), s->samplesPerPixel, seconds, rmse);
+    if (heatMap)
+        WriteHeatMap((dir + "/" + heatMap).c_str(), &image, reference);
+}
+
+static bool Reference(const std::string &dir, const BenchScene &b, const Scene *scene,
+                      Image *reference) {
+    std::string path = dir + "/ref_" + b.name + ".png", error;
+    if (sizeof(real) != sizeof(double)) // the float build reads the double build's reference
+        return ReadPng(path.c_str(), reference, &error);
+    RenderSettings s = Settings(b, kReferenceSpp, SAMPLES_GRID);
+    RayStats stats = {0, 0, 0, 0, 0};
+    fprintf(stderr, "bench: %-10s reference, %d spp grid, double...\n", b.name, kReferenceSpp);
+    Render(scene, &s, reference, &stats);
+    return WritePng(path.c_str(), reference, &error);
+}
+
+static void SceneRows(const std::string &dir, const BenchScene &b) {
+    Scene scene;
+    b.build(&scene);
+    Image reference;
+    if (!Reference(dir, b, &scene, &reference)) {
+        fprintf(stderr, "bench: no reference image for %s in %s\n", b.name, dir.c_str());
+        return;
+    }
+    std::string precision = kPrecision;
+    for (int spp : {1, 16}) { // precision: both builds
+        RenderSettings s = Settings(b, spp, SAMPLES_GRID);
+        std::string heat = b.name + std::string("_") + precision + ".png";
+        Row(dir, b, &scene, "precision", precision, &s, &reference,
+            spp == 1 ? heat.c_str() : nullptr);
+    }
+    if (precision != "double")
+        return;
+    const char *names[] = {"grid", "jitter", "adaptive"};
+    for (int spp : {4, 16, 64})
+        for (int m = 0; m < 3; m++) {
+            RenderSettings s = Settings(b, spp, (SampleMethod)m);
+            std::string heat = b.name + std::string("_") + names[m] + "16.png";
+            Row(dir, b, &scene, "aa", names[m], &s, &reference, spp == 16 ? heat.c_str() : nullptr);
+        }
+    RenderSettings s = Settings(b, 1, SAMPLES_GRID);
+    s.methods.triangle = TRIANGLE_CRAMER;
+    Row(dir, b, &scene, "triangle", "cramer", &s, &reference, nullptr);
+    s = Settings(b, 1, SAMPLES_GRID);
+    Row(dir, b, &scene, "triangle", "watertight", &s, &reference, nullptr);
+    s.methods.sphere = SPHERE_TEXTBOOK;
+    Row(dir, b, &scene, "sphere", "textbook", &s, &reference, nullptr);
+    s = Settings(b, 1, SAMPLES_GRID);
+    Row(dir, b, &scene, "sphere", "stable", &s, &reference, nullptr);
+    for (int depth : {1, 2, 3, 5, 10}) {
+        s = Settings(b, 1, SAMPLES_GRID);
+        s.depth = depth;
+        Row(dir, b, &scene, "depth", std::to_string(depth), &s, &reference, nullptr);
+    }
+}
+
+// The hard-case suite with each pair of routines: its pass count goes in the `setting` column.
+static void HardCaseRows() {
+    struct {
+        const char *name;
+        SphereRoutine sphere;
+        TriangleRoutine triangle;
+    } pairs[] = {{"stable+watertight", IntersectSphere, IntersectTriangle},
+                 {"stable+cramer", IntersectSphere, IntersectTriangleCramer},
+                 {"textbook+watertight", IntersectSphereTextbook, IntersectTriangle},
+                 {"textbook+cramer", IntersectSphereTextbook, IntersectTriangleCramer}};
+    for (const auto &p : pairs) {
+        std::vector<HardCaseResult> results;
+        auto start = std::chrono::steady_clock::now();
+        RunHardCases(p.sphere, p.triangle, &results);
+        double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        int passed = 0;
+        for (const HardCaseResult &r : results)
+            passed += r.passed;
+        printf("hard_cases,suite,%s %s %d/%d,0,%.5f,0,,,,\n", p.name, kPrecision, passed,
+               (int)results.size(), seconds);
+        fprintf(stderr, "bench: hard cases %-20s %-6s %d of %d rows pass\n", p.name, kPrecision,
+                passed, (int)results.size());
+    }
+}
+
+// The pixels of a PNG as a raw RGB file, for PngFloor.
+static int RawPixels(const char *png, const char *rgb) {
+    Image image;
+    std::string error;
+    FILE *out = nullptr;
+    if (!ReadPng(png, &image, &error) || !(out = fopen(rgb, "wb")))
+        return 2;
+    bool ok = fwrite(image.pixels.data(), 1, image.pixels.size(), out) == image.pixels.size();
+    return fclose(out) == 0 && ok ? 0 : 3;
+}
+
+static int PngFloor(const char *rgb, const char *png) {
+    Image image = {512, 512, std::vector<uint8_t>(512 * 512 * 3)};
+    FILE *in = fopen(rgb, "rb");
+    if (!in || fread(image.pixels.data(), 1, image.pixels.size(), in) != image.pixels.size())
+        return 2;
+    fclose(in);
+    std::string error;
+    return WritePng(png, &image, &error) ? 0 : 3;
+}
+
+int ReportMain(const std::string &dir); // report.cpp
+
+int main(int argc, char **argv) {
+    std::string mode = argc > 1 ? argv[1] : "";
+    if (mode == "pngfloor" && argc == 4)
+        return PngFloor(argv[2], argv[3]);
+    if (mode == "raw" && argc == 4)
+        return RawPixels(argv[2], argv[3]);
+    if (mode == "report" && argc == 3)
+        return ReportMain(argv[2]);
+    if (mode != "rows" || argc != 3) {
+        fprintf(stderr, "usage: bench rows DIR | bench report DIR | bench pngfloor RGB PNG\n");
+        return 2;
+    }
+    for (const BenchScene &b : kScenes)
+        SceneRows(argv[2], b);
+    HardCaseRows();
+    return 0;
+}
