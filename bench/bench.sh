@@ -75,11 +75,11 @@ echo "Whole process: ./ray $whole ms; a process that only writes the same PNG: $
 # What each effect costs: the same scene with one effect's keyword taken out. The scene files are
 # rewritten by sed into a temporary directory; nothing else changes.
 cp scenes/test.scene scenes/effects.scene "$out/"
-sed 's/ mirror [0-9.]*//' scenes/test.scene >"$out/test_no_mirrors.scene"
+sed 's/ mirror [0-9][0-9.]*//' scenes/test.scene >"$out/test_no_mirrors.scene"
 sed '/^light /d' scenes/test.scene >"$out/test_no_lights.scene"
 sed 's/glass 1.5/diffuse 0.9 0.9 0.9/; s/glass 1.33/diffuse 0.6 0.8 0.9/' scenes/effects.scene >"$out/effects_no_glass.scene"
-sed 's/ specular [0-9.]* [0-9.]*//' scenes/effects.scene >"$out/effects_no_specular.scene"
-sed 's/ mirror [0-9.]*//' scenes/effects.scene >"$out/effects_no_mirrors.scene"
+sed 's/ specular [0-9][0-9.]* [0-9][0-9.]*//' scenes/effects.scene >"$out/effects_no_specular.scene"
+sed 's/ mirror [0-9][0-9.]*//' scenes/effects.scene >"$out/effects_no_mirrors.scene"
 RUNS=5
 echo
 echo "## What each effect costs: render time (median of $RUNS, $(nproc) threads) and rays by kind"
