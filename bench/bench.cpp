@@ -87,22 +87,44 @@ static void WriteHeatMap(const char *path, const Image *image, const Image *refe
     WritePng(path, &heat, &error);
 }
 
-// One row: render, time, compare, print the CSV line and a progress line.
+static void PrintRow(const BenchScene &b, const char *knob, const std::string &setting, int spp,
+                     double seconds, uint64_t rays, const Image *image, const Image *against) {
+    double rmse, psnr, off1, off8;
+    ErrorOf(image, against, &rmse, &psnr, &off1, &off8);
+    printf("%s,%s,%s,%d,%.5f,%llu,%.6f,%.3f,%.6f,%.6f\n", b.name, knob, setting.c_str(), spp,
+           seconds, (unsigned long long)rays, rmse, psnr, off1, off8);
+    fflush(stdout);
+    fprintf(stderr, "bench: %-10s %-10s %-28s %4d spp %8.3f s  rmse %.4f\n", b.name, knob,
+            setting.c_str(), spp, seconds, rmse);
+}
+
+// One row: render, time, compare with the reference, print the CSV line and a progress line.
+// With `base` (the double, robust, 1-spp image), a second row `difference` compares with it:
+// what this knob alone changes, apart from the aliasing every 1-spp image has.
 static void Row(const std::string &dir, const BenchScene &b, const Scene *scene, const char *knob,
                 const std::string &setting, const RenderSettings *s, const Image *reference,
-                const char *heatMap) {
+                const char *heatMap, const Image *base = nullptr) {
     Image image;
     uint64_t rays = 0;
     double seconds = TimeRender(scene, s, &image, &rays);
-    double rmse, psnr, off1, off8;
-    ErrorOf(&image, reference, &rmse, &psnr, &off1, &off8);
-    printf("%s,%s,%s,%d,%.5f,%llu,%.6f,%.3f,%.6f,%.6f\n", b.name, knob, setting.c_str(),
-           s->samplesPerPixel, seconds, (unsigned long long)rays, rmse, psnr, off1, off8);
-    fflush(stdout);
-    fprintf(stderr, "bench: %-10s %-10s %-28s %4d spp %8.3f s  rmse %.4f\n", b.name, knob,
-            setting.c_str(), s->samplesPerPixel, seconds, rmse);
+    PrintRow(b, knob, setting, s->samplesPerPixel, seconds, rays, &image, reference);
+    if (base)
+        PrintRow(b, "difference", setting, s->samplesPerPixel, seconds, rays, &image, base);
     if (heatMap)
-        WriteHeatMap((dir + "/" + heatMap).c_str(), &image, reference);
+        WriteHeatMap((dir + "/" + heatMap).c_str(), &image, base ? base : reference);
+}
+
+// The double build's robust 1-spp image, which the float build and the other methods are
+// compared with (written by the double build, read by the float build).
+static bool BaseImage(const std::string &dir, const BenchScene &b, const Scene *scene,
+                      Image *base) {
+    std::string path = dir + "/base_" + b.name + ".png", error;
+    if (sizeof(real) != sizeof(double))
+        return ReadPng(path.c_str(), base, &error);
+    RenderSettings s = Settings(b, 1, SAMPLES_GRID);
+    RayStats stats = {0, 0, 0, 0, 0};
+    Render(scene, &s, base, &stats);
+    return WritePng(path.c_str(), base, &error);
 }
 
 static bool Reference(const std::string &dir, const BenchScene &b, const Scene *scene,
@@ -125,14 +147,20 @@ static void SceneRows(const std::string &dir, const BenchScene &b) {
         fprintf(stderr, "bench: no reference image for %s in %s\n", b.name, dir.c_str());
         return;
     }
-    std::string precision = kPrecision;
-    for (int spp : {1, 16}) { // precision: both builds
-        RenderSettings s = Settings(b, spp, SAMPLES_GRID);
-        std::string heat = b.name + std::string("_") + precision + ".png";
-        Row(dir, b, &scene, "precision", precision, &s, &reference,
-            spp == 1 ? heat.c_str() : nullptr);
+    Image base;
+    if (!BaseImage(dir, b, &scene, &base)) {
+        fprintf(stderr, "bench: no 1-spp double image for %s in %s\n", b.name, dir.c_str());
+        return;
     }
-    if (precision != "double")
+    bool isFloat = sizeof(real) != sizeof(double);
+    for (int spp : {1, 16}) { // precision: both builds; float is also compared with double
+        RenderSettings s = Settings(b, spp, SAMPLES_GRID);
+        std::string heat = b.name + std::string("_float_vs_double.png");
+        bool compare = isFloat && spp == 1;
+        Row(dir, b, &scene, "precision", kPrecision, &s, &reference,
+            compare ? heat.c_str() : nullptr, compare ? &base : nullptr);
+    }
+    if (isFloat)
         return;
     const char *names[] = {"grid", "jitter", "adaptive"};
     for (int spp : {4, 16, 64})
@@ -143,11 +171,12 @@ static void SceneRows(const std::string &dir, const BenchScene &b) {
         }
     RenderSettings s = Settings(b, 1, SAMPLES_GRID);
     s.methods.triangle = TRIANGLE_CRAMER;
-    Row(dir, b, &scene, "triangle", "cramer", &s, &reference, nullptr);
+    Row(dir, b, &scene, "triangle", "cramer", &s, &reference, nullptr, &base);
     s = Settings(b, 1, SAMPLES_GRID);
     Row(dir, b, &scene, "triangle", "watertight", &s, &reference, nullptr);
     s.methods.sphere = SPHERE_TEXTBOOK;
-    Row(dir, b, &scene, "sphere", "textbook", &s, &reference, nullptr);
+    std::string textbookHeat = b.name + std::string("_textbook_sphere.png");
+    Row(dir, b, &scene, "sphere", "textbook", &s, &reference, textbookHeat.c_str(), &base);
     s = Settings(b, 1, SAMPLES_GRID);
     Row(dir, b, &scene, "sphere", "stable", &s, &reference, nullptr);
     for (int depth : {1, 2, 3, 5, 10}) {
