@@ -331,6 +331,16 @@ bool AnyHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real
     return false;
 }
 
+// The shadow ray from a hit toward a light: from the safe origin, with dir = light - origin, so
+// t = 1 is the light itself and the open interval (0, 1) holds every possible blocker, however
+// far away the light is. Returns false (and casts nothing) if the light sits within rounding
+// distance of the surface, where dir would be zero and nothing can be in between.
+bool ShadowRay(const RayHit *hit, vec3 lightPosition, Ray *ray) {
+    ray->origin = OffsetRayOrigin(hit, lightPosition - hit->point);
+    ray->dir = lightPosition - ray->origin;
+    return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
+}
+
 // Self-intersection ("shadow acne") is prevented by one method for every ray that leaves a
 // surface (pbrt-v4 §6.8.6): the hit point is within pointError of the true surface, so moving
 // it along the normal by the error box's extent in that direction, sum |n_i| pointError_i, puts

@@ -5,7 +5,6 @@
 // main, which prints one line `ray: MESSAGE` and exits with 2 (bad usage or input) or 3 (I/O).
 #include "ray.h"
 
-#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -70,24 +69,13 @@ struct Options {
     double tolerance = 0;
 };
 
-// Reads a whole decimal integer in [lo, hi]; anything else is an error naming the option.
+// Reads a whole number in [lo, hi] (ParseWholeNumber); an error names the option.
 static bool ParseInt(const char *text, int lo, int hi, const char *what, int *value,
                      std::string *error) {
-    char *end = nullptr;
-    errno = 0;
-    long v = strtol(text, &end, 10);
-    bool whole = end != text && *end == 0 && (*text == '-' || *text == '+' || isdigit(*text));
-    if (!whole || errno == ERANGE) {
-        *error = std::string(what) + ": not an integer: '" + text + "'";
-        return false;
-    }
-    if (v < lo || v > hi) {
-        *error = std::string(what) + " must be between " + std::to_string(lo) + " and " +
-                 std::to_string(hi) + ", not " + text;
-        return false;
-    }
-    *value = (int)v;
-    return true;
+    if (ParseWholeNumber(text, lo, hi, value, error))
+        return true;
+    *error = std::string(what) + ": " + *error;
+    return false;
 }
 
 // --size W or WxH

@@ -306,6 +306,10 @@ bool AnyHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real
 // its own error bound, to the side dir goes, so the new ray cannot hit the surface it leaves.
 vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir);
 
+// The shadow ray from a hit to a light at lightPosition: safe origin, t = 1 at the light, so a
+// blocker is any hit in (0, 1). False if the light is within rounding distance of the surface.
+bool ShadowRay(const RayHit *hit, vec3 lightPosition, Ray *ray);
+
 // ---- shade.cpp: lighting and the ray chain ---------------------------------------------------
 
 // Decides which effects a render of this scene with these settings can need (see Effects).
@@ -401,9 +405,13 @@ bool ReadSceneFile(const char *path, Scene *scene, std::string *error);
 bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
                     std::string *error);
 
-// Reads a whole number token: optional sign, decimal digits, nothing else, finite. Returns false
-// and sets *error for anything else (inf, nan, hexadecimal, trailing characters).
+// Reads a number token: decimal digits with an optional sign, point and exponent, finite.
+// Returns false and sets *error for anything else (inf, nan, hexadecimal, trailing characters).
 bool ParseReal(const std::string &token, real *value, std::string *error);
+
+// Reads a whole number token (optional sign, decimal digits) in [lo, hi]; false with *error
+// otherwise. Shared by the scene reader and the command line.
+bool ParseWholeNumber(const std::string &token, int lo, int hi, int *value, std::string *error);
 
 // ---- probe.cpp: probes and ray trees (SPEC section 4) -----------------------------------------
 

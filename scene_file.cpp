@@ -112,21 +112,28 @@ static bool Numbers(const Statement *st, size_t first, int count, size_t total, 
     return true;
 }
 
+bool ParseWholeNumber(const std::string &token, int lo, int hi, int *value, std::string *error) {
+    size_t k = !token.empty() && (token[0] == '+' || token[0] == '-') ? 1 : 0;
+    bool digits = k < token.size() && token.find_first_not_of("0123456789", k) == std::string::npos;
+    if (!digits) {
+        *error = "not a whole number: " + Shown(token);
+        return false;
+    }
+    long v = token.size() < 12 ? strtol(token.c_str(), nullptr, 10) : lo - 1L; // 12 digits: too big
+    if (v < lo || v > hi) {
+        *error = "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + ", not " +
+                 Shown(token);
+        return false;
+    }
+    *value = (int)v;
+    return true;
+}
+
 static bool WholeNumber(const Statement *st, size_t index, int lo, int hi, int *out,
                         std::string *error) {
-    const std::string &t = st->tokens[index];
-    size_t k = (t[0] == '+' || t[0] == '-') ? 1 : 0;
-    bool digits = k < t.size() && t.find_first_not_of("0123456789", k) == std::string::npos;
-    long v = digits && t.size() < 12 ? strtol(t.c_str(), nullptr, 10) : lo - 1L;
-    if (!digits)
-        return Fail(st, st->tokens[0] + ": not a whole number: " + Shown(t), error);
-    if (v < lo || v > hi)
-        return Fail(st,
-                    st->tokens[0] + " must be between " + std::to_string(lo) + " and " +
-                        std::to_string(hi) + ", not " + Shown(t),
-                    error);
-    *out = (int)v;
-    return true;
+    std::string why;
+    return ParseWholeNumber(st->tokens[index], lo, hi, out, &why) ||
+           Fail(st, st->tokens[0] + ": " + why, error);
 }
 
 static bool CheckColor(const Statement *st, const char *what, color c, std::string *error) {

@@ -43,19 +43,13 @@ static int RecordRay(RayKind kind, const Ray *ray, TraceLog *log) {
     return (int)log->tree->size() - 1;
 }
 
-// Whether the segment from the hit point to the light is free of shapes. The shadow ray runs
-// from a safe origin (OffsetRayOrigin) with dir = light - origin, so t = 1 is the light itself
-// and the open interval (0, 1) holds every possible blocker, however far away the light is.
-// Without shapes that could block (Effects), no ray is needed at all.
+// Whether the segment from the hit point to the light is free of shapes (ShadowRay: every hit
+// with t in (0, 1) blocks). Without shapes that could block (Effects), no ray is needed at all.
 static bool LightIsVisible(const Scene *scene, const RenderSettings *settings, const RayHit *hit,
                            const Light *light, TraceLog *log) {
-    if (!settings->effects.shadows)
-        return true;
     Ray shadow;
-    shadow.origin = OffsetRayOrigin(hit, light->position - hit->point);
-    shadow.dir = light->position - shadow.origin;
-    if (shadow.dir.x == 0 && shadow.dir.y == 0 && shadow.dir.z == 0)
-        return true; // the light sits within rounding distance of the surface: nothing between
+    if (!settings->effects.shadows || !ShadowRay(hit, light->position, &shadow))
+        return true;
     log->stats.shadow++;
     if (!log->tree)
         return !AnyHit(scene, settings->methods, &shadow, 0, 1);

@@ -47,9 +47,9 @@ static color ShadowMask(const Scene *scene, const RenderSettings *settings, cons
             sum = sum + color{0.25, 0.25, 0.25};
             continue;
         }
-        Ray shadow = {OffsetRayOrigin(hit, toLight), {}};
-        shadow.dir = light.position - shadow.origin;
-        bool blocked = AnyHit(scene, settings->methods, &shadow, 0, 1);
+        Ray shadow;
+        bool blocked = ShadowRay(hit, light.position, &shadow) &&
+                       AnyHit(scene, settings->methods, &shadow, 0, 1);
         sum = sum + (blocked ? color{1, 0, 0} : color{1, 1, 1});
     }
     return scene->lights.empty() ? sum : (real(1) / scene->lights.size()) * sum;

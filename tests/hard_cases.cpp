@@ -351,9 +351,8 @@ static int SelfShadowed(const Suite *s, const Triangle &ground, vec3 eye, vec3 l
         RayHit hit;
         if (!s->triangle(&ground, &ray, 0, kInfinity, &hit))
             continue;
-        Ray shadow = {OffsetRayOrigin(&hit, light - hit.point), {}};
-        shadow.dir = light - shadow.origin;
-        acne += s->triangle(&ground, &shadow, 0, 1, &hit);
+        Ray shadow;
+        acne += ShadowRay(&hit, light, &shadow) && s->triangle(&ground, &shadow, 0, 1, &hit);
     }
     return acne;
 }
@@ -397,8 +396,8 @@ static void OffsetRows(Suite *s) {
         Ray up = {{2e-5, -1, 0}, {0, 1, 0}}; // finds P = (2e-5, 0, 0) on the ground
         RayHit p, blocker;
         bool found = s->triangle(&ground, &up, 0, kInfinity, &p);
-        Ray shadow = {OffsetRayOrigin(&p, light - p.point), {}};
-        shadow.dir = light - shadow.origin;
+        Ray shadow;
+        found = found && ShadowRay(&p, light, &shadow);
         bool ballShadows = found && s->sphere(&ball, &shadow, 0, 1, &blocker);
         bool sheetShadows = found && s->triangle(&sheet, &shadow, 0, 1, &blocker);
         Report(s, "OFF-3", ballShadows && sheetShadows,
@@ -417,10 +416,9 @@ static void OffsetRows(Suite *s) {
                 if (!s->sphere(&ball, &ray, 0, kInfinity, &hit) ||
                     !(Dot(hit.normal, light - hit.point) > 0))
                     continue;
-                Ray shadow = {OffsetRayOrigin(&hit, light - hit.point), {}};
-                shadow.dir = light - shadow.origin;
+                Ray shadow;
                 rays++;
-                acne += s->sphere(&ball, &shadow, 0, 1, &again);
+                acne += ShadowRay(&hit, light, &shadow) && s->sphere(&ball, &shadow, 0, 1, &again);
             }
         Report(s, "OFF-4", acne == 0 && rays > 1000,
                std::to_string(acne) + " of " + std::to_string(rays) +
