@@ -8,6 +8,8 @@
 #include <cstdio>
 
 static std::string Number(real v) {
+    if (v == 0) // -0 (a normal turned toward the ray) reads as 0
+        v = 0;
     char text[32];
     snprintf(text, sizeof text, "%.17g", (double)v);
     return text;

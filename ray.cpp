@@ -30,7 +30,7 @@ static const char *kUsage =
     "  --aa grid|jitter|adaptive\n"
     "                           where the samples go: a regular grid (default), one random\n"
     "                           point per grid cell, or 5 first (centre and corners) and N\n"
-    "                           only where those differ\n"
+    "                           only where those differ (N > 5; up to 5 it is jitter)\n"
     "  --depth N                most rays in one chain, primary included, 1..1000 (default 10)\n"
     "  --threads N              worker threads, 1..1024 (default: all hardware threads)\n"
     "  --triangle watertight|cramer\n"
@@ -39,7 +39,8 @@ static const char *kUsage =
     "  --sphere stable|textbook ray/sphere method: Ray Tracing Gems ch. 7 (default) or the\n"
     "                           textbook quadratic, kept only to show what it gets wrong\n"
     "  --view normal|depth|id|cost|shadow\n"
-    "                           draw a debug view instead of the lit image\n"
+    "                           draw a debug view instead of the lit image (default output:\n"
+    "                           the image's name with _VIEW added, e.g. reference_normal.png)\n"
     "  --stats                  print time, rays by kind, Mrays/s and the effects used to stderr\n"
     "\n"
     "probing (prints JSON, renders nothing):\n"
@@ -171,6 +172,7 @@ static bool ParseOptions(int argc, char **argv, Options *opt, std::string *error
                     {"--compare", 2}, {"--tolerance", 1}, {"--stats", 0},    {"--help", 0},
                     {"-h", 0},        {"--version", 0}};
     bool sceneGiven = false;
+    std::string seen; // the options given so far, each between spaces
     for (int k = 1; k < argc; k++) {
         std::string a = argv[k];
         int values = -1;
@@ -190,6 +192,11 @@ static bool ParseOptions(int argc, char **argv, Options *opt, std::string *error
             sceneGiven = true;
             continue;
         }
+        if (seen.find(" " + a + " ") != std::string::npos) {
+            *error = a + " given twice";
+            return false;
+        }
+        seen += " " + a + " ";
         if (k + values >= argc) {
             *error = a + " needs " + std::to_string(values) + " value" + (values > 1 ? "s" : "");
             return false;
@@ -200,6 +207,10 @@ static bool ParseOptions(int argc, char **argv, Options *opt, std::string *error
         if (!ParseOption(a, argv + k + 1, opt, error))
             return false;
         k += values;
+    }
+    if (seen.find(" --tolerance ") != std::string::npos && !opt->compare) {
+        *error = "--tolerance goes with --compare";
+        return false;
     }
     int modes = opt->probeRay + !opt->raysFile.empty() + opt->pixel + opt->compare + opt->view;
     if (modes > 1) {
@@ -368,6 +379,10 @@ int main(int argc, char **argv) {
         Render(&scene, &settings, &image, &stats);
     double renderSeconds = SecondsSince(renderStart);
 
+    // A debug view is written beside the image, not over it: reference_normal.png
+    if (opt.view && opt.output.empty())
+        defaultOutput = defaultOutput.substr(0, defaultOutput.size() - 4) + "_" +
+                        ViewName(opt.viewKind) + ".png";
     std::string output = opt.output.empty() ? defaultOutput : opt.output;
     if (!WritePng(output.c_str(), &image, &error)) {
         fprintf(stderr, "ray: %s\n", error.c_str());

@@ -432,8 +432,9 @@ std::string PixelTreeJson(const Scene *scene, const RenderSettings *settings, in
 
 enum ViewKind { VIEW_NORMAL, VIEW_DEPTH, VIEW_ID, VIEW_COST, VIEW_SHADOW };
 
-// Looks up a view by its command-line name; false if there is none.
+// Looks up a view by its command-line name; false if there is none. ViewName is the reverse.
 bool FindView(const std::string &name, ViewKind *view);
+const char *ViewName(ViewKind view);
 
 // Renders a debug view of the primary hits instead of the lit image.
 void RenderView(const Scene *scene, const RenderSettings *settings, ViewKind view, Image *image);

@@ -16,6 +16,13 @@ static const struct {
               {"cost", VIEW_COST},
               {"shadow", VIEW_SHADOW}};
 
+const char *ViewName(ViewKind view) {
+    for (const auto &v : kViews)
+        if (v.view == view)
+            return v.name;
+    return "view";
+}
+
 bool FindView(const std::string &name, ViewKind *view) {
     for (const auto &v : kViews) {
         if (name == v.name) {

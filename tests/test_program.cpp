@@ -89,6 +89,8 @@ static const BadRun kBadRuns[] = {
     {"default test", 2, "more than one scene"},
     {"nosuchscene", 2, "nosuchscene"},
     {"-o missing_dir/x.png", 3, "missing_dir/x.png"},
+    {"--size 8 --size 9", 2, "--size given twice"},
+    {"--tolerance 2", 2, "--tolerance goes with --compare"},
 };
 
 static void TestBadInput(const std::string &dir) {
@@ -200,6 +202,14 @@ static void TestProbesInProgram(const std::string &dir) {
     status = RunRay(dir, "--rays - < rays.txt", &err);
     CHECK(status == 2 && ReadOutput(dir) == out, "--rays - reads standard input the same way");
 
+    CHECK(RunRay(dir, "--view normal --size 8", &err) == 0 &&
+              FileExists(dir + "/reference_normal.png"),
+          "--view normal without -o writes reference_normal.png, beside the image, not over it");
+    char *first = realpath("scenes/first.scene", nullptr); // a ray from inside the red sphere
+    CHECK(first && RunRay(dir, "--ray 0 0 -6 1 0 0 '" + std::string(first) + "'", &err) == 0 &&
+              ReadOutput(dir).find("\"normal\":[-1,0,0]") != std::string::npos,
+          "probe from inside a sphere: normal [-1,0,0], no negative zeros");
+    free(first);
     CHECK(RunRay(dir, "--pixel 110 330", &err) == 0 &&
               ReadOutput(dir).find("\"kind\":\"shadow\"") != std::string::npos,
           "--pixel 110 330 prints a tree with a shadow ray");
