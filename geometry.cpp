@@ -155,11 +155,17 @@ static bool IsDegenerate(const Triangle *tri) {
     return !(Dot(n, n) > 0) || !IsFinite(n);
 }
 
+// The per-ray half of the watertight test, shared by every triangle the ray meets.
+struct RayShear {
+    int kx, ky, kz;  // axes renamed so the ray runs along +kz
+    real sx, sy, sz; // shear d[kx]/d[kz], d[ky]/d[kz], and 1/d[kz]
+};
+
 // The per-ray half of the watertight test (Woop, Benthin & Wald 2013, §3): rename the axes so
 // kz is the largest |d| component (swapping kx and ky if d[kz] < 0, to keep the triangles'
 // winding), and the shear that turns the ray into the +z axis. It depends on the ray only, so
 // FindNearestHit computes it once per ray for all the triangles.
-void ShearRay(const Ray *ray, RayShear *shear) {
+static void ShearRay(const Ray *ray, RayShear *shear) {
     vec3 d = ray->dir, ad = Abs(d);
     int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
     int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
@@ -178,8 +184,8 @@ void ShearRay(const Ray *ray, RayShear *shear) {
 // Why watertight: a corner shared by two triangles is transformed to the same numbers in both,
 // so a shared edge's function is the same number with the opposite sign, and the one case in
 // which rounding can lie, a value of exactly 0, is recomputed exactly. No epsilon anywhere.
-bool IntersectShearedTriangle(const Triangle *tri, const Ray *ray, const RayShear *k, real tMin,
-                              real tMax, RayHit *hit) {
+static bool IntersectShearedTriangle(const Triangle *tri, const Ray *ray, const RayShear *k,
+                                     real tMin, real tMax, RayHit *hit) {
     // Translate the corners to the ray origin and shear them so the ray is the +z axis
     vec3 A = tri->a - ray->origin, B = tri->b - ray->origin, C = tri->c - ray->origin;
     real Az = Component(A, k->kz), Bz = Component(B, k->kz), Cz = Component(C, k->kz);

@@ -284,16 +284,6 @@ bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax
 bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                              RayHit *hit);
 
-// The watertight test in two halves: ShearRay depends on the ray only (computed once per ray),
-// IntersectShearedTriangle on the triangle; IntersectTriangle is the two in a row.
-struct RayShear {
-    int kx, ky, kz;  // axes renamed so the ray runs along +kz
-    real sx, sy, sz; // shear d[kx]/d[kz], d[ky]/d[kz], and 1/d[kz]
-};
-void ShearRay(const Ray *ray, RayShear *shear);
-bool IntersectShearedTriangle(const Triangle *tri, const Ray *ray, const RayShear *shear, real tMin,
-                              real tMax, RayHit *hit);
-
 // The nearest hit over every shape of the scene with t in (tMin, tMax): the one loop that serves
 // primary, reflection and refraction rays.
 bool FindNearestHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax,
