@@ -130,29 +130,29 @@ static real ExactEdgeFunction(real ax, real ay, real bx, real by) {
 }
 
 // Fills the hit record of a triangle hit at ray parameter t with barycentric coordinates
-// (b0, b1, b2) of the corners a, b, c. The point is the barycentric combination, not o + t d:
-// it lies on the triangle within gamma(7) sum |b_i p_i| per axis (pbrt-v4 §6.8.5).
-static void SetTriangleHit(const Triangle *tri, const Ray *ray, real t, real b0, real b1, real b2,
+// (b0, b1, b2) of the corners a, b, c; false (and *hit untouched) for a zero-area triangle. The
+// point is the barycentric combination, not o + t d: it lies on the triangle within
+// gamma(7) sum |b_i p_i| per axis (pbrt-v4 §6.8.5).
+static bool SetTriangleHit(const Triangle *tri, const Ray *ray, real t, real b0, real b1, real b2,
                            RayHit *hit) {
+    // Return no intersection if the triangle is degenerate (zero area): it has no normal
+    vec3 n = Cross(tri->b - tri->a, tri->c - tri->a);
+    if (!(Dot(n, n) > 0) || !IsFinite(n))
+        return false;
     vec3 p0 = b0 * tri->a, p1 = b1 * tri->b, p2 = b2 * tri->c;
     hit->t = t;
     hit->point = p0 + p1 + p2;
     hit->pointError = Gamma(7) * (Abs(p0) + Abs(p1) + Abs(p2));
-    SetFaceNormal(ray, Normalize(Cross(tri->b - tri->a, tri->c - tri->a)), hit);
+    SetFaceNormal(ray, Normalize(n), hit);
     hit->material = tri->material;
     hit->shape = SHAPE_TRIANGLE;
+    return true;
 }
 
 // The largest of three finite numbers (std::fmax is a library call that also handles NaN).
 static inline real Max3(real a, real b, real c) {
     real m = a > b ? a : b;
     return m > c ? m : c;
-}
-
-// Return no intersection if the triangle is degenerate (zero area): it has no normal.
-static bool IsDegenerate(const Triangle *tri) {
-    vec3 n = Cross(tri->b - tri->a, tri->c - tri->a);
-    return !(Dot(n, n) > 0) || !IsFinite(n);
 }
 
 // The per-ray half of the watertight test, shared by every triangle the ray meets.
@@ -237,10 +237,7 @@ static bool IntersectShearedTriangle(const Triangle *tri, const Ray *ray, const 
     if (!(t > errT))
         return false;
 
-    if (IsDegenerate(tri))
-        return false;
-    SetTriangleHit(tri, ray, t, u / det, v / det, w / det, hit);
-    return true;
+    return SetTriangleHit(tri, ray, t, u / det, v / det, w / det, hit);
 }
 
 bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit) {
@@ -280,10 +277,7 @@ bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, rea
     if (beta < 0 || beta > 1 - gamma)
         return false;
 
-    if (IsDegenerate(tri))
-        return false;
-    SetTriangleHit(tri, ray, t, 1 - beta - gamma, beta, gamma, hit);
-    return true;
+    return SetTriangleHit(tri, ray, t, 1 - beta - gamma, beta, gamma, hit);
 }
 
 static bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, real tMin, real tMax,
