@@ -17,6 +17,14 @@ static void SetFaceNormal(const Ray *ray, vec3 outwardNormal, RayHit *hit) {
     hit->normal = hit->frontFace ? outwardNormal : -outwardNormal;
 }
 
+// The quadratic's discriminant b^2 - a c0 in the form a r^2 - |f x d|^2 (see IntersectSphere):
+// |f x d| / |d| is how far the ray's line passes from the centre, so it is negative exactly
+// when the line misses the sphere.
+static inline real SphereDiscriminant(vec3 f, vec3 d, real a, real r2) {
+    vec3 fxd = Cross(f, d);
+    return a * r2 - Dot(fxd, fxd);
+}
+
 // Solve |o + t d - c|^2 = r^2. With f = o - c this is a t^2 + 2 b t + c0 = 0, where
 // a = d.d, b = f.d, c0 = f.f - r^2 (RTIOW v4 §6.2 uses the same half-b form).
 // Two fixes from Ray Tracing Gems ch. 7 (Haines et al. 2019), because the textbook form fails
@@ -33,7 +41,6 @@ static void SetFaceNormal(const Ray *ray, vec3 outwardNormal, RayHit *hit) {
 bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
     vec3 d = ray->dir;
     vec3 f = ray->origin - s->center;
-    assert((d.x != 0 || d.y != 0 || d.z != 0) && "ray direction must not be zero");
     real a = Dot(d, d);
     if (!(a > 0)) // |d| so small that d.d underflows (below 1e-154 in double), or NaN: no answer
         return false;
@@ -46,10 +53,8 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
     if (b > 0 && c0 > 0 && tMin >= 0)
         return false;
 
-    // Reject if the line passes farther from the centre than the radius: disc = a r^2 - |f x d|^2,
-    // since |f x d| / |d| is that distance (NaN input lands here too)
-    vec3 fxd = Cross(f, d);
-    real disc = a * r2 - Dot(fxd, fxd);
+    // Reject if the line passes farther from the centre than the radius (NaN input lands here too)
+    real disc = SphereDiscriminant(f, d, a, r2);
     if (!(disc >= 0))
         return false;
 
@@ -155,25 +160,113 @@ static inline real Max3(real a, real b, real c) {
     return m > c ? m : c;
 }
 
-// The per-ray half of the watertight test, shared by every triangle the ray meets.
+// The per-ray half of the watertight test, shared by every triangle the ray meets: the ray in
+// the renamed axes (see RenameAxes) and the shear that turns it into the +z axis.
 struct RayShear {
-    int kx, ky, kz;  // axes renamed so the ray runs along +kz
-    real sx, sy, sz; // shear d[kx]/d[kz], d[ky]/d[kz], and 1/d[kz]
+    int kz;          // the axis renamed z: the largest |d| component
+    vec3 origin;     // the ray origin, axes renamed
+    real sx, sy, sz; // d[kx]/d[kz], d[ky]/d[kz] and 1/d[kz]
 };
 
-// The per-ray half of the watertight test (Woop, Benthin & Wald 2013, §3): rename the axes so
-// kz is the largest |d| component (swapping kx and ky if d[kz] < 0, to keep the triangles'
-// winding), and the shear that turns the ray into the +z axis. It depends on the ray only, so
-// FindNearestHit computes it once per ray for all the triangles.
+// v with its axes renamed (kx, ky, kz) = (kz + 1, kz + 2, kz) mod 3. A rotation keeps the
+// triangles' winding, whatever kz is. kz is a compile-time constant, so every component below is
+// a plain field, not an indexed load: the triangle loop is compiled once per axis (HitShapes).
+template <int kz> static inline vec3 RenameAxes(vec3 v) {
+    if constexpr (kz == 0)
+        return {v.y, v.z, v.x};
+    else if constexpr (kz == 1)
+        return {v.z, v.x, v.y};
+    else
+        return v;
+}
+
+// The per-ray half of the watertight test (Woop, Benthin & Wald 2013, §3): kz is the largest
+// |d| component, and the shear turns the ray into the +z axis. It depends on the ray only, so
+// the shape loop computes it once for all the triangles. (The paper also swaps kx and ky when
+// d[kz] < 0, to keep the winding for back-face culling. That negates u, v, w and det together
+// and changes neither t nor the barycentrics, so a two-sided test leaves it out.)
+template <int kz> static void ShearRayAxes(const Ray *ray, RayShear *shear) {
+    vec3 d = RenameAxes<kz>(ray->dir);
+    *shear = {kz, RenameAxes<kz>(ray->origin), d.x / d.z, d.y / d.z, 1 / d.z};
+}
+
 static void ShearRay(const Ray *ray, RayShear *shear) {
-    vec3 d = ray->dir, ad = Abs(d);
+    vec3 ad = Abs(ray->dir);
     int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
-    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
-    real dz = Component(d, kz);
-    assert(dz != 0 && "ray direction must not be zero");
-    if (dz < 0)
-        std::swap(kx, ky);
-    *shear = {kx, ky, kz, Component(d, kx) / dz, Component(d, ky) / dz, 1 / dz};
+    assert(Component(ray->dir, kz) != 0 && "ray direction must not be zero");
+    if (kz == 0)
+        ShearRayAxes<0>(ray, shear);
+    else if (kz == 1)
+        ShearRayAxes<1>(ray, shear);
+    else
+        ShearRayAxes<2>(ray, shear);
+}
+
+// A triangle seen from the ray (ShearCorners): corners moved to the ray origin, axes renamed and
+// sheared so the ray is the +z axis. x and y are final; z is not yet scaled by 1 / d[kz].
+struct ShearedTriangle {
+    real ax, ay, bx, by, cx, cy;
+    real az, bz, cz;
+};
+
+// The three edge functions of the sheared triangle (IntersectShearedTriangle), each exact in
+// sign and in being 0. Called only when a rounded one came out 0, so it is kept out of line.
+static void ExactEdgeFunctions(const ShearedTriangle *s, real *u, real *v, real *w) {
+    *u = ExactEdgeFunction(s->cx, s->cy, s->bx, s->by);
+    *v = ExactEdgeFunction(s->ax, s->ay, s->cx, s->cy);
+    *w = ExactEdgeFunction(s->bx, s->by, s->ax, s->ay);
+}
+
+// Whether t is within its own rounding error of 0, i.e. the ray starts on this triangle. The
+// error of each step is bounded as in pbrt-v4 §6.8.4 ("conservative ray-triangle t"): the
+// sheared x and y carry the translated z before its scaling by 1 / d[kz] (rawZ), the scaled z
+// its own roundings, then the edge functions errE. But t = (U az + V bz + W cz) / (U + V + W)
+// is a weighted average of the z's, with weights that sum to 1 whatever their errors; so the
+// weights' errors move t by at most their sum (6 errE / |det|, to first order) times half the
+// z's spread, not times the z's size. pbrt's size-based bound rejects a tiny triangle far away
+// (HARD_CASES TRI-9); this one keeps it and still rejects every re-hit.
+static bool WithinRoundingOfZero(const ShearedTriangle *s, const RayShear *k, real det, real t) {
+    real az = k->sz * s->az, bz = k->sz * s->bz, cz = k->sz * s->cz;
+    real rawZ = Max3(std::fabs(s->az), std::fabs(s->bz), std::fabs(s->cz));
+    real maxX = Max3(std::fabs(s->ax), std::fabs(s->bx), std::fabs(s->cx));
+    real maxY = Max3(std::fabs(s->ay), std::fabs(s->by), std::fabs(s->cy));
+    real maxZ = Max3(std::fabs(az), std::fabs(bz), std::fabs(cz));
+    real spreadZ = Max3(az, bz, cz) + Max3(-az, -bz, -cz);
+    real errX = Gamma(5) * (maxX + rawZ), errY = Gamma(5) * (maxY + rawZ);
+    real errE = 2 * (Gamma(2) * maxX * maxY + errY * maxX + errX * maxY);
+    real errT = Gamma(7) * maxZ + 3 * errE * spreadZ / std::fabs(det);
+    return !(t > errT);
+}
+
+// The corners of a triangle as the ray sees them: moved to the ray origin, renamed, sheared.
+template <int kz>
+static inline ShearedTriangle ShearCorners(const Triangle *tri, const RayShear *k) {
+    vec3 A = RenameAxes<kz>(tri->a) - k->origin;
+    vec3 B = RenameAxes<kz>(tri->b) - k->origin;
+    vec3 C = RenameAxes<kz>(tri->c) - k->origin;
+    return {A.x - k->sx * A.z,
+            A.y - k->sy * A.z,
+            B.x - k->sx * B.z,
+            B.y - k->sy * B.z,
+            C.x - k->sx * C.z,
+            C.y - k->sy * C.z,
+            A.z,
+            B.z,
+            C.z};
+}
+
+// The 2D edge functions U, V, W of the sheared corners (see IntersectShearedTriangle), rounded.
+// True if two have strictly opposite signs: the ray passes outside an edge. Rounding is
+// monotonic (x >= y gives fl(x) >= fl(y)), so a rounded a b - c d has the sign of the exact one
+// or is 0. A true here is therefore never wrong, and a 0 is left to the exact recomputation.
+// Two that disagree end the test before the third is computed.
+static inline bool EdgesDisagree(const ShearedTriangle *s, real *u, real *v, real *w) {
+    *u = s->cx * s->by - s->cy * s->bx;
+    *v = s->ax * s->cy - s->ay * s->cx;
+    if ((*u < 0 && *v > 0) || (*u > 0 && *v < 0))
+        return true;
+    *w = s->bx * s->ay - s->by * s->ax;
+    return (*w < 0 && (*u > 0 || *v > 0)) || (*w > 0 && (*u < 0 || *v < 0));
 }
 
 // Watertight ray/triangle intersection (Woop, Benthin & Wald, "Watertight Ray/Triangle
@@ -184,26 +277,18 @@ static void ShearRay(const Ray *ray, RayShear *shear) {
 // Why watertight: a corner shared by two triangles is transformed to the same numbers in both,
 // so a shared edge's function is the same number with the opposite sign, and the one case in
 // which rounding can lie, a value of exactly 0, is recomputed exactly. No epsilon anywhere.
+template <int kz>
 static bool IntersectShearedTriangle(const Triangle *tri, const Ray *ray, const RayShear *k,
                                      real tMin, real tMax, RayHit *hit) {
     // Translate the corners to the ray origin and shear them so the ray is the +z axis
-    vec3 A = tri->a - ray->origin, B = tri->b - ray->origin, C = tri->c - ray->origin;
-    real Az = Component(A, k->kz), Bz = Component(B, k->kz), Cz = Component(C, k->kz);
-    real ax = Component(A, k->kx) - k->sx * Az, ay = Component(A, k->ky) - k->sy * Az;
-    real bx = Component(B, k->kx) - k->sx * Bz, by = Component(B, k->ky) - k->sy * Bz;
-    real cx = Component(C, k->kx) - k->sx * Cz, cy = Component(C, k->ky) - k->sy * Cz;
+    ShearedTriangle s = ShearCorners<kz>(tri, k);
 
-    // The 2D edge functions; recompute exactly any that rounded to 0. Two that disagree in sign
-    // already put the ray outside, before the third is computed
-    real u = cx * by - cy * bx, v = ax * cy - ay * cx;
-    if ((u < 0 && v > 0) || (u > 0 && v < 0))
+    // The 2D edge functions; recompute exactly any that rounded to 0
+    real u, v, w;
+    if (EdgesDisagree(&s, &u, &v, &w))
         return false;
-    real w = bx * ay - by * ax;
-    if (u == 0 || v == 0 || w == 0) {
-        u = ExactEdgeFunction(cx, cy, bx, by);
-        v = ExactEdgeFunction(ax, ay, cx, cy);
-        w = ExactEdgeFunction(bx, by, ax, ay);
-    }
+    if (u == 0 || v == 0 || w == 0)
+        ExactEdgeFunctions(&s, &u, &v, &w);
 
     // Reject if the signs differ (the ray passes outside an edge) or the ray is in the plane
     if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0))
@@ -213,37 +298,30 @@ static bool IntersectShearedTriangle(const Triangle *tri, const Ray *ray, const 
         return false;
 
     // The distance along the ray: t = (U Az + V Bz + W Cz) / det, with z scaled by 1 / d[kz]
-    real az = k->sz * Az, bz = k->sz * Bz, cz = k->sz * Cz;
+    real az = k->sz * s.az, bz = k->sz * s.bz, cz = k->sz * s.cz;
     real t = (u * az + v * bz + w * cz) / det;
-    if (!(t > tMin && t < tMax))
+    if (!(t > tMin && t < tMax) || WithinRoundingOfZero(&s, k, det, t))
         return false;
-
-    // Reject a t within its own rounding error of 0: the ray starts on this triangle. The error
-    // of each step is bounded as in pbrt-v4 §6.8.4 ("conservative ray-triangle t"): the sheared
-    // x and y carry the translated z before its scaling by 1 / d[kz] (rawZ), the scaled z its
-    // own roundings, then the edge functions errE. But t = (U az + V bz + W cz) / (U + V + W) is
-    // a weighted average of the z's, with weights that sum to 1 whatever their errors; so the
-    // weights' errors move t by at most their sum (6 errE / |det|, to first order) times half
-    // the z's spread, not times the z's size. pbrt's size-based bound rejects a tiny triangle
-    // far away (HARD_CASES TRI-9); this one keeps it and still rejects every re-hit.
-    real rawZ = Max3(std::fabs(Az), std::fabs(Bz), std::fabs(Cz));
-    real maxX = Max3(std::fabs(ax), std::fabs(bx), std::fabs(cx));
-    real maxY = Max3(std::fabs(ay), std::fabs(by), std::fabs(cy));
-    real maxZ = Max3(std::fabs(az), std::fabs(bz), std::fabs(cz));
-    real spreadZ = Max3(az, bz, cz) + Max3(-az, -bz, -cz);
-    real errX = Gamma(5) * (maxX + rawZ), errY = Gamma(5) * (maxY + rawZ);
-    real errE = 2 * (Gamma(2) * maxX * maxY + errY * maxX + errX * maxY);
-    real errT = Gamma(7) * maxZ + 3 * errE * spreadZ / std::fabs(det);
-    if (!(t > errT))
-        return false;
-
     return SetTriangleHit(tri, ray, t, u / det, v / det, w / det, hit);
+}
+
+// The first step of IntersectShearedTriangle, small enough to sit inside the shape loop: true if
+// the ray passes outside an edge by the rounded edge functions alone. Most triangles a ray meets
+// end here, and only the rest pay for the whole test (which repeats these few operations).
+template <int kz> static inline bool PassesOutside(const Triangle *tri, const RayShear *k) {
+    ShearedTriangle s = ShearCorners<kz>(tri, k);
+    real u, v, w;
+    return EdgesDisagree(&s, &u, &v, &w);
 }
 
 bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit) {
     RayShear shear;
     ShearRay(ray, &shear);
-    return IntersectShearedTriangle(tri, ray, &shear, tMin, tMax, hit);
+    if (shear.kz == 0)
+        return IntersectShearedTriangle<0>(tri, ray, &shear, tMin, tMax, hit);
+    if (shear.kz == 1)
+        return IntersectShearedTriangle<1>(tri, ray, &shear, tMin, tMax, hit);
+    return IntersectShearedTriangle<2>(tri, ray, &shear, tMin, tMax, hit);
 }
 
 // The handout's triangle test: solve a + beta (b - a) + gamma (c - a) = e + t d by Cramer's
@@ -280,55 +358,74 @@ bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, rea
     return SetTriangleHit(tri, ray, t, 1 - beta - gamma, beta, gamma, hit);
 }
 
-static bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, real tMin, real tMax,
-                      RayHit *hit) {
-    return methods.sphere == SPHERE_TEXTBOOK ? IntersectSphereTextbook(s, ray, tMin, tMax, hit)
-                                             : IntersectSphere(s, ray, tMin, tMax, hit);
+// The first step of IntersectSphere, small enough to sit inside the shape loop: true if the
+// ray's line misses the sphere. It is the same expression IntersectSphere rejects on, so the two
+// always agree, and most spheres a ray meets end here.
+static inline bool LineMissesSphere(const Sphere *s, const Ray *ray) {
+    vec3 d = ray->dir;
+    return !(SphereDiscriminant(ray->origin - s->center, d, Dot(d, d), s->radius * s->radius) >= 0);
 }
 
-static bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray, const RayShear *shear,
-                        real tMin, real tMax, RayHit *hit) {
-    return methods.triangle == TRIANGLE_CRAMER
-               ? IntersectTriangleCramer(tri, ray, tMin, tMax, hit)
-               : IntersectShearedTriangle(tri, ray, shear, tMin, tMax, hit);
+static bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, real tMin, real tMax,
+                      RayHit *hit) {
+    return methods.sphere == SPHERE_TEXTBOOK
+               ? IntersectSphereTextbook(s, ray, tMin, tMax, hit)
+               : !LineMissesSphere(s, ray) && IntersectSphere(s, ray, tMin, tMax, hit);
+}
+
+// The triangle half of the shape loop (HitShapes), for a ray whose main axis is kz.
+template <int kz>
+static bool HitTriangles(const Scene *scene, Methods methods, const Ray *ray, const RayShear *shear,
+                         real tMin, real tMax, bool anyHit, RayHit *hit) {
+    bool found = false;
+    for (size_t i = 0; i < scene->triangles.size(); i++) {
+        const Triangle *tri = &scene->triangles[i];
+        if (methods.triangle == TRIANGLE_CRAMER
+                ? IntersectTriangleCramer(tri, ray, tMin, tMax, hit)
+                : !PassesOutside<kz>(tri, shear) &&
+                      IntersectShearedTriangle<kz>(tri, ray, shear, tMin, tMax, hit)) {
+            hit->index = (int)i;
+            tMax = hit->t;
+            found = true;
+            if (anyHit)
+                break;
+        }
+    }
+    return found;
 }
 
 // The second handout's nearest hit over the list of shapes: every hit shrinks tMax, so each
-// later shape only counts if it is nearer. A tie keeps the earlier shape.
-bool FindNearestHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax,
-                    RayHit *hit) {
+// later shape only counts if it is nearer, and a tie keeps the earlier shape. With anyHit, the
+// first hit found ends the search (a shadow ray needs no more).
+static bool HitShapes(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax,
+                      bool anyHit, RayHit *hit) {
     bool found = false;
     for (size_t i = 0; i < scene->spheres.size(); i++) {
         if (HitSphere(methods, &scene->spheres[i], ray, tMin, tMax, hit)) {
             hit->index = (int)i;
             tMax = hit->t;
             found = true;
+            if (anyHit)
+                return true;
         }
     }
     RayShear shear;
     ShearRay(ray, &shear);
-    for (size_t i = 0; i < scene->triangles.size(); i++) {
-        if (HitTriangle(methods, &scene->triangles[i], ray, &shear, tMin, tMax, hit)) {
-            hit->index = (int)i;
-            tMax = hit->t;
-            found = true;
-        }
-    }
-    return found;
+    if (shear.kz == 0)
+        return HitTriangles<0>(scene, methods, ray, &shear, tMin, tMax, anyHit, hit) || found;
+    if (shear.kz == 1)
+        return HitTriangles<1>(scene, methods, ray, &shear, tMin, tMax, anyHit, hit) || found;
+    return HitTriangles<2>(scene, methods, ray, &shear, tMin, tMax, anyHit, hit) || found;
 }
 
-// Any hit in (tMin, tMax), for shadow rays: the first blocker found ends the search.
+bool FindNearestHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax,
+                    RayHit *hit) {
+    return HitShapes(scene, methods, ray, tMin, tMax, false, hit);
+}
+
 bool AnyHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax) {
     RayHit scratch;
-    for (const Sphere &s : scene->spheres)
-        if (HitSphere(methods, &s, ray, tMin, tMax, &scratch))
-            return true;
-    RayShear shear;
-    ShearRay(ray, &shear);
-    for (const Triangle &tri : scene->triangles)
-        if (HitTriangle(methods, &tri, ray, &shear, tMin, tMax, &scratch))
-            return true;
-    return false;
+    return HitShapes(scene, methods, ray, tMin, tMax, true, &scratch);
 }
 
 // The shadow ray from a hit toward a light: from the safe origin, with dir = light - origin, so
