@@ -378,8 +378,9 @@ template <int kz>
 static bool HitTriangles(const Scene *scene, Methods methods, const Ray *ray, const RayShear *shear,
                          real tMin, real tMax, bool anyHit, RayHit *hit) {
     bool found = false;
-    for (size_t i = 0; i < scene->triangles.size(); i++) {
-        const Triangle *tri = &scene->triangles[i];
+    const Triangle *triangles = scene->triangles.data();
+    for (size_t i = 0, n = scene->triangles.size(); i < n; i++) {
+        const Triangle *tri = &triangles[i];
         if (methods.triangle == TRIANGLE_CRAMER
                 ? IntersectTriangleCramer(tri, ray, tMin, tMax, hit)
                 : !PassesOutside<kz>(tri, shear) &&
@@ -400,8 +401,9 @@ static bool HitTriangles(const Scene *scene, Methods methods, const Ray *ray, co
 static bool HitShapes(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax,
                       bool anyHit, RayHit *hit) {
     bool found = false;
-    for (size_t i = 0; i < scene->spheres.size(); i++) {
-        if (HitSphere(methods, &scene->spheres[i], ray, tMin, tMax, hit)) {
+    const Sphere *spheres = scene->spheres.data();
+    for (size_t i = 0, n = scene->spheres.size(); i < n; i++) {
+        if (HitSphere(methods, &spheres[i], ray, tMin, tMax, hit)) {
             hit->index = (int)i;
             tMax = hit->t;
             found = true;

@@ -350,7 +350,8 @@ void Render(const Scene *scene, const RenderSettings *settings, Image *image, Ra
 color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
                   RayStats *stats);
 
-// Pixel (i, j)'s sample s of n, in pixels from the image's top-left corner.
+// Pixel (i, j)'s sample s of n (n <= 65536, the most --spp allows), in pixels from the image's
+// top-left corner.
 vec2 SamplePosition(int i, int j, int s, int n);
 
 // Colour channel to 8 bits: round(clamp(c, 0, 1) * 255), no gamma.

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <chrono>
 #include <cstdio>
 #include <thread>
@@ -92,17 +93,19 @@ static void AddStats(const RayStats *from, RayStats *to) {
 // multiple). `inCell` places the sample in its cell: (0.5, 0.5) is the centre. n = 1 is the
 // pixel centre (the handout's method), n = k * k the usual k x k grid.
 static vec2 CellPosition(int s, int n, vec2 inCell) {
+    assert(n >= 1 && n <= 65536 && s >= 0 && s < n);
     int rows = (int)std::sqrt((double)n);
     while ((rows + 1) * (rows + 1) <= n) // guard sqrt rounding for large perfect squares
         rows++;
-    // Row r holds the cells [n r / rows, n (r + 1) / rows); start from the estimate s rows / n
-    int row = (int)((long long)s * rows / n);
-    while (row > 0 && (long long)n * row / rows > s)
+    // Row r holds the cells [n r / rows, n (r + 1) / rows); start from the estimate s rows / n.
+    // n <= 65536 and rows <= 256 keep every product below 2^31
+    int row = s * rows / n;
+    while (row > 0 && n * row / rows > s)
         row--;
-    while ((long long)n * (row + 1) / rows <= s)
+    while (n * (row + 1) / rows <= s)
         row++;
-    int first = (int)((long long)n * row / rows);
-    int count = (int)((long long)n * (row + 1) / rows) - first;
+    int first = n * row / rows;
+    int count = n * (row + 1) / rows - first;
     return {(real(s - first) + inCell.x) / count, (real(row) + inCell.y) / rows};
 }
 

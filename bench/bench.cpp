@@ -8,6 +8,10 @@
 //   bench raw PNG RGB   the pixels of a PNG as a raw RGB file
 //   bench pngfloor RGB PNG   writes the raw 512 x 512 RGB file as a PNG, nothing else: the floor
 //                       for the whole-process time of `ray`
+//   bench time PROGRAM ARGS...   runs PROGRAM once (its standard output thrown away, its
+//                       standard error passed on) and prints its whole-process wall time in ms:
+//                       from fork to the end of waitpid, so the clock includes starting and
+//                       loading the program and nothing of the shell
 //
 // Every time is the median of at least kRuns renders in this process, and of as many as fit in
 // kMinSeconds (render only, all threads); errors
@@ -19,10 +23,13 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <fcntl.h>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <sys/wait.h>
 #include <thread>
+#include <unistd.h>
 
 static const int kRuns = 5;
 static const double kMinSeconds = 1;
@@ -238,6 +245,23 @@ static int PngFloor(const char *rgb, const char *png) {
     return WritePng(png, &image, &error) ? 0 : 3;
 }
 
+static int TimeProcess(char **command) {
+    auto start = std::chrono::steady_clock::now();
+    pid_t child = fork();
+    if (child == 0) {
+        int null = open("/dev/null", O_WRONLY);
+        dup2(null, 1);
+        execv(command[0], command);
+        _exit(127);
+    }
+    int status = 0;
+    if (child < 0 || waitpid(child, &status, 0) != child)
+        return 3;
+    std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - start;
+    printf("%.3f\n", ms.count());
+    return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : 1;
+}
+
 int ReportMain(const std::string &dir); // report.cpp
 
 int main(int argc, char **argv) {
@@ -248,8 +272,11 @@ int main(int argc, char **argv) {
         return RawPixels(argv[2], argv[3]);
     if (mode == "report" && argc == 3)
         return ReportMain(argv[2]);
+    if (mode == "time" && argc >= 3)
+        return TimeProcess(argv + 2);
     if (mode != "rows" || argc != 3) {
-        fprintf(stderr, "usage: bench rows DIR | bench report DIR | bench pngfloor RGB PNG\n");
+        fprintf(stderr, "usage: bench rows DIR | bench report DIR | bench pngfloor RGB PNG | "
+                        "bench time PROGRAM ARGS...\n");
         return 2;
     }
     for (const BenchScene &b : kScenes)
