@@ -26,6 +26,15 @@ std::string DescribeNear(double actual, double expected, double tolerance);
 // precision, so the same predictions hold in the double and the float test program.
 const double kRelTol = 64 * std::numeric_limits<real>::epsilon();
 
+// Tiny deterministic generator for the randomised checks (tests own their state).
+struct TestRng {
+    uint64_t state;
+};
+inline real Uniform(TestRng *rng) { // in [0, 1)
+    rng->state = rng->state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return real((rng->state >> 40) * (1.0 / 16777216.0));
+}
+
 // A default render configuration for tests: the scene's size, 1 spp, its depth, one thread.
 RenderSettings TestSettings(const Scene *scene);
 

@@ -208,9 +208,42 @@ static void TestSphereSpawnedRaysDoNotReHit() {
               std::to_string(reHits) + " of " + std::to_string(rays) + ")");
 }
 
+// The shape loop skips a sphere when the ray's line misses it (LineMissesSphere in geometry.cpp)
+// before the whole test; that must never change an answer. Rays aimed at the silhouette, where
+// the discriminant is 0 or within rounding of it, and just inside and outside it: FindNearestHit
+// on a one-sphere scene must give exactly what IntersectSphere, which has no quick reject, gives.
+static void TestSphereQuickRejectChangesNothing() {
+    TestRng rng = {77};
+    int differ = 0, hits = 0;
+    for (int k = 0; k < 3000; k++) {
+        Scene one;
+        one.spheres.push_back(
+            {{Uniform(&rng), Uniform(&rng), -5 - Uniform(&rng)}, real(0.5) + Uniform(&rng), 0});
+        const Sphere &s = one.spheres[0];
+        // A line passing r (1 + e) from the centre, e = 0 or up to 1e-6 either way: through a
+        // point `side` of the centre, along w perpendicular to side, from 6 units back
+        vec3 w = Normalize({Uniform(&rng) - real(0.5), Uniform(&rng) - real(0.5), -1});
+        vec3 side = Normalize(Cross(w, vec3{Uniform(&rng), 1, Uniform(&rng)}));
+        real r = s.radius * (1 + (Uniform(&rng) * 2 - 1) * real(1e-6) * (k % 3));
+        vec3 target = s.center + r * side;
+        if (k % 2)
+            target.y = std::nextafter(target.y, k % 4 == 1 ? kInfinity : -kInfinity);
+        Ray ray = {target - 6 * w, 6 * w};
+        RayHit direct, looped;
+        bool a = IntersectSphere(&s, &ray, 0, kInfinity, &direct);
+        bool b = FindNearestHit(&one, kRobustMethods, &ray, 0, kInfinity, &looped);
+        hits += a;
+        differ += a != b || (a && (direct.t != looped.t || direct.point.x != looped.point.x));
+    }
+    CHECK(differ == 0 && hits > 300 && hits < 2700,
+          "the shape loop's sphere quick reject changes no answer for 3000 silhouette rays (" +
+              std::to_string(differ) + " differ, " + std::to_string(hits) + " hits)");
+}
+
 void TestGeometry() {
     TestSphereTable();
     TestMissLeavesHitAlone();
     TestSphereHitRecord();
     TestSphereSpawnedRaysDoNotReHit();
+    TestSphereQuickRejectChangesNothing();
 }

@@ -72,15 +72,6 @@ static void TestTriangleTable(IntersectFn intersect, const char *method) {
     }
 }
 
-// Tiny deterministic generator for the randomised checks (tests own their state).
-struct TestRng {
-    uint64_t state;
-};
-static real Uniform(TestRng *rng) { // in [0, 1)
-    rng->state = rng->state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return real((rng->state >> 40) * (1.0 / 16777216.0));
-}
-
 // On ordinary rays (aimed at points clearly inside or clearly outside) the handout's Cramer form
 // and the watertight default agree: same verdict, same t.
 static void TestMethodsAgree() {
@@ -187,6 +178,42 @@ static void TestTriangleSpawnedRaysDoNotReHit() {
               std::to_string(reHits) + " of " + std::to_string(rays) + ")");
 }
 
+// The shape loop rejects most triangles by the rounded edge functions alone, before the whole
+// test (PassesOutside in geometry.cpp); that quick reject must never change an answer. Integer
+// corners, rays aimed at corners and at quarter points of edges, directions with a main axis
+// of length 8 and sides of whole numbers: every step of the shear is exact, so the edge functions
+// there are exactly 0, the case the quick reject must leave to the whole test. Along each main
+// axis (the loop is compiled once per axis), FindNearestHit on a one-triangle scene must give
+// exactly what IntersectTriangle, which has no quick reject, gives.
+static void TestQuickRejectChangesNothing() {
+    TestRng rng = {2024};
+    int differ = 0, hits = 0;
+    auto whole = [&rng](int lo, int hi) { return real(lo + (int)(Uniform(&rng) * (hi - lo + 1))); };
+    for (int k = 0; k < 3000; k++) {
+        vec3 p[3];
+        for (vec3 &corner : p)
+            corner = {whole(-4, 4), whole(-4, 4), whole(-4, 4)};
+        Scene one;
+        one.triangles.push_back({p[0], p[1], p[2], 0});
+        real along = whole(0, 3) / 4;
+        vec3 target = p[k % 3] + along * (p[(k + 1) % 3] - p[k % 3]);
+        int axis = (k / 3) % 3;
+        vec3 dir = {whole(-2, 2), whole(-2, 2), whole(-2, 2)};
+        real main = k % 2 ? 8 : -8;
+        dir = {axis == 0 ? main : dir.x, axis == 1 ? main : dir.y, axis == 2 ? main : dir.z};
+        Ray ray = {target - dir, dir};
+        RayHit direct, looped;
+        bool a = IntersectTriangle(&one.triangles[0], &ray, 0, kInfinity, &direct);
+        bool b = FindNearestHit(&one, kRobustMethods, &ray, 0, kInfinity, &looped);
+        hits += a;
+        differ += a != b || (a && (direct.t != looped.t || direct.point.x != looped.point.x));
+    }
+    CHECK(differ == 0 && hits > 1000,
+          "the shape loop's quick reject changes no answer for 3000 rays through edges and "
+          "corners (" +
+              std::to_string(differ) + " differ, " + std::to_string(hits) + " hits)");
+}
+
 void TestTriangles() {
     TestTriangleTable(IntersectTriangle, "watertight");
     TestTriangleTable(IntersectTriangleCramer, "Cramer");
@@ -194,4 +221,5 @@ void TestTriangles() {
     TestFanIsWatertight();
     TestDegenerateTriangle();
     TestTriangleSpawnedRaysDoNotReHit();
+    TestQuickRejectChangesNothing();
 }
