@@ -25,8 +25,9 @@ static inline real SphereDiscriminant(vec3 f, vec3 d, real a, real r2) {
     return a * r2 - Dot(fxd, fxd);
 }
 
-// Solve |o + t d - c|^2 = r^2. With f = o - c this is a t^2 + 2 b t + c0 = 0, where
-// a = d.d, b = f.d, c0 = f.f - r^2 (RTIOW v4 §6.2 uses the same half-b form).
+// Solve |f + t d|^2 = r^2 for f = o - c, the ray origin relative to the centre. Expanded, this
+// is a t^2 + 2 b t + c0 = 0 with a = d.d, b = f.d, c0 = f.f - r^2 (RTIOW v4 §6.2 uses the same
+// half-b form; the handout's A, B, C are a, 2b, c0).
 // Two fixes from Ray Tracing Gems ch. 7 (Haines et al. 2019), because the textbook form fails
 // for small spheres far away and for the near root:
 //   discriminant b^2 - a c0 = a r^2 - |f x d|^2 = a (r^2 - |f - (b/a) d|^2): measure how far the
@@ -34,18 +35,12 @@ static inline real SphereDiscriminant(vec3 f, vec3 d, real a, real r2) {
 //     Baker; the cross product gives the same distance without a division);
 //   roots q = -(b + sign(b) sqrt(disc)), t0 = c0 / q, t1 = q / a: never subtract nearly equal
 //     numbers (Press et al., Numerical Recipes §5.6).
-// Returns the nearest root in (tMin, tMax). No root is discarded as "too close to 0": a ray that
-// leaves this sphere starts outside its rounding error (OffsetRayOrigin), so c0 has the right
-// sign and the root it would re-hit is negative; a probe that starts a hair outside the sphere
-// still sees it (HARD_CASES SPH-5, a hit at t = 3e-11).
-bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
-    vec3 d = ray->dir;
-    vec3 f = ray->origin - s->center;
+// Writes the nearest root in (tMin, tMax) and the hit point relative to the centre. The caller
+// has scaled f, d and r so that no square over- or underflows (IntersectSphere).
+static bool SolveSphere(vec3 f, vec3 d, real r, real tMin, real tMax, real *tHit, vec3 *local) {
     real a = Dot(d, d);
-    if (!(a > 0)) // |d| so small that d.d underflows (below 1e-154 in double), or NaN: no answer
-        return false;
     real b = Dot(f, d);
-    real r2 = s->radius * s->radius;
+    real r2 = r * r;
 
     // Reject a sphere behind the ray: origin outside (c0 > 0) and moving away (b > 0) means both
     // roots are negative (their product c0/a > 0, their sum -2b/a < 0)
@@ -85,12 +80,46 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
     // away. Then put it back on the sphere (pbrt-v4 §6.8.5): what error remains lies along the
     // surface, not across it, a few roundings of the coordinates.
     vec3 offLine = f - (b / a) * d;
-    vec3 local = offLine + ((nearRoot ? -sqrtDisc : sqrtDisc) / a) * d;
-    local = (s->radius / Length(local)) * local;
+    vec3 p = offLine + ((nearRoot ? -sqrtDisc : sqrtDisc) / a) * d;
+    *local = (r / Length(p)) * p;
+    *tHit = t;
+    return true;
+}
+
+// The sphere test for a ray and sphere of any size. SolveSphere squares lengths (d.d, r^2,
+// |f x d|^2), which overflow for a light 1e153 away and underflow for a sphere of radius
+// 1e-200. So outside the windows of ray.h it runs in rescaled units: d times 2^kd (largest component in [1, 2)) and every
+// length in units of about the radius (times 2^kr, r in [1, 2)). Each root is then
+// t' = t 2^(kr - kd). Powers of two are exact, so where nothing over- or underflowed this gives
+// the very bits of the unscaled arithmetic. No root is discarded as "too close to 0": a ray
+// that leaves this sphere starts outside its rounding error (OffsetRayOrigin), so c0 has the
+// right sign and the root it would re-hit is negative; a probe that starts a hair outside the
+// sphere still sees it (a hit at t = 3e-11).
+bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
+    if (!(s->radius > 0) || !std::isfinite(s->radius))
+        return false;
+    int kd = 0, kr = 0;
+    if (!WithinWindow(MaxComponent(ray->dir), kDirectionWindow) ||
+        !WithinWindow(s->radius, kLengthWindow) ||
+        !(MaxComponent(ray->origin - s->center) <= PowerOfTwo(kLengthWindow)))
+        kd = UnitExponent(ray->dir), kr = -BinaryExponent(s->radius);
+    vec3 d = ScaleByPowerOfTwo(ray->dir, kd);
+    vec3 f = ScaleByPowerOfTwo(ray->origin - s->center, kr);
+    real r = ScaleByPowerOfTwo(s->radius, kr);
+    real t;
+    vec3 local;
+    if (!(MaxComponent(d) > 0) || // a zero direction (or NaN): no answer
+        !SolveSphere(f, d, r, ScaleByPowerOfTwo(tMin, kr - kd), ScaleByPowerOfTwo(tMax, kr - kd),
+                     &t, &local))
+        return false;
+    t = ScaleByPowerOfTwo(t, kd - kr);
+    if (!(t > tMin && t < tMax)) // scaling back under- or overflowed
+        return false;
     hit->t = t;
-    hit->point = s->center + local;
-    hit->pointError = Gamma(5) * Abs(local) + Gamma(1) * Abs(hit->point);
-    SetFaceNormal(ray, (1 / s->radius) * local, hit);
+    vec3 world = ScaleByPowerOfTwo(local, -kr);
+    hit->point = s->center + world;
+    hit->pointError = Gamma(5) * Abs(world) + Gamma(1) * Abs(hit->point);
+    SetFaceNormal(ray, (1 / r) * local, hit);
     hit->material = s->material;
     hit->shape = SHAPE_SPHERE;
     return true;
@@ -193,7 +222,6 @@ template <int kz> static void ShearRayAxes(const Ray *ray, RayShear *shear) {
 static void ShearRay(const Ray *ray, RayShear *shear) {
     vec3 ad = Abs(ray->dir);
     int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
-    assert(Component(ray->dir, kz) != 0 && "ray direction must not be zero");
     if (kz == 0)
         ShearRayAxes<0>(ray, shear);
     else if (kz == 1)
@@ -215,27 +243,6 @@ static void ExactEdgeFunctions(const ShearedTriangle *s, real *u, real *v, real 
     *u = ExactEdgeFunction(s->cx, s->cy, s->bx, s->by);
     *v = ExactEdgeFunction(s->ax, s->ay, s->cx, s->cy);
     *w = ExactEdgeFunction(s->bx, s->by, s->ax, s->ay);
-}
-
-// Whether t is within its own rounding error of 0, i.e. the ray starts on this triangle. The
-// error of each step is bounded as in pbrt-v4 §6.8.4 ("conservative ray-triangle t"): the
-// sheared x and y carry the translated z before its scaling by 1 / d[kz] (rawZ), the scaled z
-// its own roundings, then the edge functions errE. But t = (U az + V bz + W cz) / (U + V + W)
-// is a weighted average of the z's, with weights that sum to 1 whatever their errors; so the
-// weights' errors move t by at most their sum (6 errE / |det|, to first order) times half the
-// z's spread, not times the z's size. pbrt's size-based bound rejects a tiny triangle far away
-// (HARD_CASES TRI-9); this one keeps it and still rejects every re-hit.
-static bool WithinRoundingOfZero(const ShearedTriangle *s, const RayShear *k, real det, real t) {
-    real az = k->sz * s->az, bz = k->sz * s->bz, cz = k->sz * s->cz;
-    real rawZ = Max3(std::fabs(s->az), std::fabs(s->bz), std::fabs(s->cz));
-    real maxX = Max3(std::fabs(s->ax), std::fabs(s->bx), std::fabs(s->cx));
-    real maxY = Max3(std::fabs(s->ay), std::fabs(s->by), std::fabs(s->cy));
-    real maxZ = Max3(std::fabs(az), std::fabs(bz), std::fabs(cz));
-    real spreadZ = Max3(az, bz, cz) + Max3(-az, -bz, -cz);
-    real errX = Gamma(5) * (maxX + rawZ), errY = Gamma(5) * (maxY + rawZ);
-    real errE = 2 * (Gamma(2) * maxX * maxY + errY * maxX + errX * maxY);
-    real errT = Gamma(7) * maxZ + 3 * errE * spreadZ / std::fabs(det);
-    return !(t > errT);
 }
 
 // The corners of a triangle as the ray sees them: moved to the ray origin, renamed, sheared.
@@ -273,7 +280,7 @@ static inline bool EdgesDisagree(const ShearedTriangle *s, real *u, real *v, rea
 // Intersection", JCGT 2(1), 2013). Move the ray origin to 0, rename the axes and shear so the
 // ray is the +z axis (ShearRay); the ray then hits the triangle iff the 2D edge functions
 //   U = Cx By - Cy Bx,  V = Ax Cy - Ay Cx,  W = Bx Ay - By Ax
-// of the sheared corners agree in sign, and t = (U Az + V Bz + W Cz) / (U + V + W).
+// of the sheared corners agree in sign. t then comes from the triangle's plane (plane.cpp).
 // Why watertight: a corner shared by two triangles is transformed to the same numbers in both,
 // so a shared edge's function is the same number with the opposite sign, and the one case in
 // which rounding can lie, a value of exactly 0, is recomputed exactly. No epsilon anywhere.
@@ -293,16 +300,13 @@ static bool IntersectShearedTriangle(const Triangle *tri, const Ray *ray, const 
     // Reject if the signs differ (the ray passes outside an edge) or the ray is in the plane
     if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0))
         return false;
-    real det = u + v + w;
-    if (det == 0 || !std::isfinite(det))
+    if (u == 0 && v == 0 && w == 0)
         return false;
 
-    // The distance along the ray: t = (U Az + V Bz + W Cz) / det, with z scaled by 1 / d[kz]
-    real az = k->sz * s.az, bz = k->sz * s.bz, cz = k->sz * s.cz;
-    real t = (u * az + v * bz + w * cz) / det;
-    if (!(t > tMin && t < tMax) || WithinRoundingOfZero(&s, k, det, t))
-        return false;
-    return SetTriangleHit(tri, ray, t, u / det, v / det, w / det, hit);
+    // Inside: where, from the triangle's plane (plane.cpp). The paper's own
+    // t = (U Az + V Bz + W Cz) / (U + V + W) loses about u L^2 / w for a triangle of length L and
+    // width w, enough to lose the floor of a long corridor 1.5 units away.
+    return HitTrianglePlane(tri, ray, tMin, tMax, hit);
 }
 
 // The first step of IntersectShearedTriangle, small enough to sit inside the shape loop: true if
@@ -314,14 +318,52 @@ template <int kz> static inline bool PassesOutside(const Triangle *tri, const Ra
     return EdgesDisagree(&s, &u, &v, &w);
 }
 
+// A ray's direction rescaled to a largest component in [1, 2) when it lies outside
+// kDirectionWindow (ray.h), and its interval with it, so that no shape test squares or divides a
+// direction of 1e-200 or 1e200 out of range. Scaling d by 2^k
+// scales every t by 2^-k exactly; ScaleBack undoes it. False for a direction that is zero (or
+// not finite): such a ray has no answer.
+struct ScaledRay {
+    Ray ray;
+    int k;
+    real tMin, tMax;
+};
+
+static bool ScaleRay(const Ray *ray, real tMin, real tMax, ScaledRay *s) {
+    if (WithinWindow(MaxComponent(ray->dir), kDirectionWindow)) {
+        *s = {*ray, 0, tMin, tMax};
+        return true;
+    }
+    s->k = UnitExponent(ray->dir);
+    s->ray = {ray->origin, ScaleByPowerOfTwo(ray->dir, s->k)};
+    s->tMin = ScaleByPowerOfTwo(tMin, -s->k);
+    s->tMax = ScaleByPowerOfTwo(tMax, -s->k);
+    return MaxComponent(s->ray.dir) >= 1 && IsFinite(s->ray.dir);
+}
+
+// The hit's t in units of the original direction; false if that leaves (tMin, tMax) by
+// overflowing or underflowing.
+static bool ScaleBack(const ScaledRay *s, real tMin, real tMax, RayHit *hit) {
+    if (s->k == 0)
+        return true;
+    hit->t = ScaleByPowerOfTwo(hit->t, s->k);
+    return hit->t > tMin && hit->t < tMax;
+}
+
 bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit) {
+    ScaledRay s;
     RayShear shear;
-    ShearRay(ray, &shear);
-    if (shear.kz == 0)
-        return IntersectShearedTriangle<0>(tri, ray, &shear, tMin, tMax, hit);
-    if (shear.kz == 1)
-        return IntersectShearedTriangle<1>(tri, ray, &shear, tMin, tMax, hit);
-    return IntersectShearedTriangle<2>(tri, ray, &shear, tMin, tMax, hit);
+    RayHit found;
+    if (!ScaleRay(ray, tMin, tMax, &s))
+        return false;
+    ShearRay(&s.ray, &shear);
+    bool hits = shear.kz == 0   ? IntersectShearedTriangle<0>(tri, &s.ray, &shear, s.tMin, s.tMax, &found)
+                : shear.kz == 1 ? IntersectShearedTriangle<1>(tri, &s.ray, &shear, s.tMin, s.tMax, &found)
+                                : IntersectShearedTriangle<2>(tri, &s.ray, &shear, s.tMin, s.tMax, &found);
+    if (!hits || !ScaleBack(&s, tMin, tMax, &found))
+        return false;
+    *hit = found;
+    return true;
 }
 
 // The handout's triangle test: solve a + beta (b - a) + gamma (c - a) = e + t d by Cramer's
@@ -359,11 +401,16 @@ bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, rea
 }
 
 // The first step of IntersectSphere, small enough to sit inside the shape loop: true if the
-// ray's line misses the sphere. It is the same expression IntersectSphere rejects on, so the two
-// always agree, and most spheres a ray meets end here.
+// ray's line misses the sphere. It is the same expression IntersectSphere rejects on (there
+// rescaled by powers of two, which changes no sign), so the two agree, and most spheres a ray
+// meets end here.
+// Trusted only when a r^2 is a normal number: a square that overflowed (inf - inf is NaN, not
+// < 0) or fell below the normal range goes on to IntersectSphere, which rescales.
 static inline bool LineMissesSphere(const Sphere *s, const Ray *ray) {
     vec3 d = ray->dir;
-    return !(SphereDiscriminant(ray->origin - s->center, d, Dot(d, d), s->radius * s->radius) >= 0);
+    real a = Dot(d, d), r2 = s->radius * s->radius;
+    return SphereDiscriminant(ray->origin - s->center, d, a, r2) < 0 &&
+           a * r2 >= std::numeric_limits<real>::min();
 }
 
 static bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, real tMin, real tMax,
@@ -398,26 +445,36 @@ static bool HitTriangles(const Scene *scene, Methods methods, const Ray *ray, co
 // The second handout's nearest hit over the list of shapes: every hit shrinks tMax, so each
 // later shape only counts if it is nearer, and a tie keeps the earlier shape. With anyHit, the
 // first hit found ends the search (a shadow ray needs no more).
-static bool HitShapes(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax,
-                      bool anyHit, RayHit *hit) {
-    bool found = false;
+static bool HitShapes(const Scene *scene, Methods methods, const Ray *unscaled, real tMin,
+                      real tMax, bool anyHit, RayHit *hit) {
+    ScaledRay s;
+    if (!ScaleRay(unscaled, tMin, tMax, &s))
+        return false;
+    const Ray *ray = &s.ray;
+    RayHit found;
+    bool any = false;
     const Sphere *spheres = scene->spheres.data();
-    for (size_t i = 0, n = scene->spheres.size(); i < n; i++) {
-        if (HitSphere(methods, &spheres[i], ray, tMin, tMax, hit)) {
-            hit->index = (int)i;
-            tMax = hit->t;
-            found = true;
-            if (anyHit)
-                return true;
+    for (size_t i = 0, n = scene->spheres.size(); i < n && !(any && anyHit); i++) {
+        if (HitSphere(methods, &spheres[i], ray, s.tMin, s.tMax, &found)) {
+            found.index = (int)i;
+            s.tMax = found.t;
+            any = true;
         }
     }
-    RayShear shear;
-    ShearRay(ray, &shear);
-    if (shear.kz == 0)
-        return HitTriangles<0>(scene, methods, ray, &shear, tMin, tMax, anyHit, hit) || found;
-    if (shear.kz == 1)
-        return HitTriangles<1>(scene, methods, ray, &shear, tMin, tMax, anyHit, hit) || found;
-    return HitTriangles<2>(scene, methods, ray, &shear, tMin, tMax, anyHit, hit) || found;
+    if (!(any && anyHit)) {
+        RayShear shear;
+        ShearRay(ray, &shear);
+        if (shear.kz == 0)
+            any = HitTriangles<0>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, &found) || any;
+        else if (shear.kz == 1)
+            any = HitTriangles<1>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, &found) || any;
+        else
+            any = HitTriangles<2>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, &found) || any;
+    }
+    if (!any || !ScaleBack(&s, tMin, tMax, &found))
+        return false;
+    *hit = found;
+    return true;
 }
 
 bool FindNearestHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax,

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -68,6 +69,85 @@ inline real Component(vec3 a, int axis) {
 }
 inline bool IsFinite(vec3 a) {
     return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+}
+inline real MaxComponent(vec3 a) { // of |a|, for finite a
+    real m = std::fabs(a.x) > std::fabs(a.y) ? std::fabs(a.x) : std::fabs(a.y);
+    return m > std::fabs(a.z) ? m : std::fabs(a.z);
+}
+
+// ---- powers of two: exact rescaling ---------------------------------------------------------
+// Multiplying by a power of two changes only the exponent, so it is exact unless the result
+// leaves the range of numbers. rt rescales any vector whose squares could overflow or underflow
+// (a direction of 1e200 or 1e-200, a sphere of radius 1e-200) to a largest component in [1, 2),
+// computes there, and scales the answer back: the same bits as unscaled arithmetic would give
+// had it not overflowed.
+
+// floor(log2 |x|) for finite x != 0: the exponent field, read directly (std::ilogb is a library
+// call, and the shape loop asks for it on every ray); subnormal x takes the library's path.
+inline int BinaryExponent(real x) {
+#ifdef RT_FLOAT
+    uint32_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    int field = (int)((bits >> 23) & 0xff);
+    return field != 0 ? field - 127 : std::ilogb(x);
+#else
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    int field = (int)((bits >> 52) & 0x7ff);
+    return field != 0 ? field - 1023 : std::ilogb(x);
+#endif
+}
+
+// 2^k: the exponent field written directly when 2^k is a normal number, else the library's.
+inline real PowerOfTwo(int k) {
+    real x;
+#ifdef RT_FLOAT
+    if (k < -126 || k > 127)
+        return std::ldexp(real(1), k);
+    uint32_t bits = (uint32_t)(k + 127) << 23;
+#else
+    if (k < -1022 || k > 1023)
+        return std::ldexp(real(1), k);
+    uint64_t bits = (uint64_t)(k + 1023) << 52;
+#endif
+    memcpy(&x, &bits, sizeof x);
+    return x;
+}
+
+// x * 2^k and v * 2^k for any k (in two exact steps when 2^k itself is out of range).
+inline real ScaleByPowerOfTwo(real x, int k) {
+    const int kMax = std::numeric_limits<real>::max_exponent - 1;
+    if (k > -kMax && k < kMax)
+        return PowerOfTwo(k) * x;
+    return PowerOfTwo(k - k / 2) * (PowerOfTwo(k / 2) * x);
+}
+inline vec3 ScaleByPowerOfTwo(vec3 v, int k) {
+    return {ScaleByPowerOfTwo(v.x, k), ScaleByPowerOfTwo(v.y, k), ScaleByPowerOfTwo(v.z, k)};
+}
+
+// Sizes inside these windows can be squared and multiplied together without leaving the normal
+// range of `real`, so the shape tests rescale only what lies outside: a direction whose largest
+// component is within 2^+-kDirectionWindow (2^+-64 in double, 2^+-8 in float), a radius or a
+// distance from a sphere's centre within 2^+-kLengthWindow (2^+-256, 2^+-32).
+const int kDirectionWindow = std::numeric_limits<real>::max_exponent / 16;
+const int kLengthWindow = 4 * kDirectionWindow;
+inline bool WithinWindow(real m, int window) {
+    return m >= PowerOfTwo(-window) && m <= PowerOfTwo(window);
+}
+
+// The power of two that brings v's largest component into [1, 2): v * 2^UnitExponent(v). 0 for
+// a zero or non-finite v (nothing to rescale).
+inline int UnitExponent(vec3 v) {
+    real m = MaxComponent(v);
+    return m > 0 && std::isfinite(m) ? -BinaryExponent(m) : 0;
+}
+
+// A unit vector in the direction of v, for v of any finite size (1e-300 or 1e300), by rescaling
+// before squaring. The zero vector stays zero.
+inline vec3 SafeNormalize(vec3 v) {
+    vec3 w = ScaleByPowerOfTwo(v, UnitExponent(v));
+    real length = Length(w);
+    return length > 0 ? (1 / length) * w : w;
 }
 
 // ---- the handouts' structs -----------------------------------------------------------------
@@ -283,6 +363,11 @@ bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tM
 bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit);
 bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                              RayHit *hit);
+
+// The hit record of a triangle whose interior the ray passes through (plane.cpp): t from the
+// triangle's plane, accurate for triangles of any length, and the point o + t d; false if t is
+// outside (tMin, tMax) or within its rounding error of 0 (the ray has just left this plane).
+bool HitTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit);
 
 // The nearest hit over every shape of the scene with t in (tMin, tMax): the one loop that serves
 // primary, reflection and refraction rays.

@@ -1,0 +1,231 @@
+// plane.cpp -- where a ray meets a triangle's plane: t, the hit point, and their error bounds.
+//
+// The second handout finds a triangle hit in two steps: where the ray meets the triangle's
+// plane, then whether that point is inside. rt decides "inside" with the watertight test
+// (geometry.cpp) and takes t from the plane, here, with the handout's formula:
+//     t = n.(a - o) / n.d,   n = (b - a) x (c - a).
+// Why not the watertight test's own t = (U az + V bz + W cz) / det: its edge functions carry an
+// error of about u L^2 for a triangle of length L, and det is about L w for its width w, so that
+// t is off by about u L^2 / w. In a corridor 1e8 units long this is more than the 1.5 units from
+// a ray's origin to the floor, and an honest bound must then throw the hit away: the ray escapes
+// through a closed box. The plane's t has errors of the sizes that the hit itself has (|a - o|,
+// |t d|), and it is computed in two tiers:
+//   1. In double, also in the float build, where products of floats are exact in double. A
+//      first-order error bound comes with it. Almost every hit is settled here.
+//   2. When that bound cannot tell whether t > 0 (a ray that leaves this very plane), or is wider
+//      than kPlainRelativeError (a triangle much longer than the ray's way to it, seen from near
+//      its plane), the same formula again in double-double arithmetic, whose error is about u^2
+//      of the terms. This is what keeps boxes and floors of any length closed.
+#include "ray.h"
+
+#include <algorithm>
+
+// A vector in double, whatever `real` is.
+struct dvec3 {
+    double x, y, z;
+};
+
+static dvec3 Widen(vec3 v) { return {v.x, v.y, v.z}; }
+static dvec3 Sub(dvec3 a, dvec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+static dvec3 Scale(double s, dvec3 a) { return {s * a.x, s * a.y, s * a.z}; }
+static double DotD(dvec3 a, dvec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static dvec3 AbsD(dvec3 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
+// The sizes of the two products in each component of a x b: what its rounding error scales with.
+static dvec3 CrossTerms(dvec3 a, dvec3 b) {
+    return {std::fabs(a.y * b.z) + std::fabs(a.z * b.y), std::fabs(a.z * b.x) + std::fabs(a.x * b.z),
+            std::fabs(a.x * b.y) + std::fabs(a.y * b.x)};
+}
+
+// Unit roundoff of double, and gamma(n) for it (ray.h has them for `real`).
+const double kU = std::numeric_limits<double>::epsilon() / 2;
+static double GammaD(int n) { return n * kU / (1 - n * kU); }
+
+// Tier 2 is taken when tier 1's bound is wider than this share of t: then the hit point
+// o + t d, which inherits the error of t, would sit farther off the surface than a few roundings
+// of its own coordinates. 32 u of `real` is twice what tier 1 gives a ray that meets an
+// axis-aligned wall head-on, so ordinary hits stay in tier 1.
+const double kPlainRelativeError = 32 * (double)kUnitRoundoff;
+
+// ---- double-double arithmetic (tier 2) ------------------------------------------------------
+
+// A number carried as the unevaluated sum hi + lo, |lo| <= u |hi|: about twice the digits of
+// double (Dekker, "A floating-point technique for extending the available precision", Numer.
+// Math. 18, 1971). Each operation below is within a few u^2 of the sizes of its operands.
+struct Wide {
+    double hi, lo;
+};
+
+// a + b exactly (Knuth, TAOCP vol. 2, §4.2.2, TwoSum): the rounded sum and what rounding lost.
+static Wide TwoSum(double a, double b) {
+    double s = a + b, bb = s - a;
+    return {s, (a - (s - bb)) + (b - bb)};
+}
+// a * b exactly: the fused multiply-add gives the product's rounding error exactly.
+static Wide TwoProduct(double a, double b) {
+    double p = a * b;
+    return {p, std::fma(a, b, -p)};
+}
+// hi + lo put back in the form |lo| <= u |hi| (Dekker's FastTwoSum).
+static Wide Renormalize(double hi, double lo) {
+    double s = hi + lo;
+    return {s, lo - (s - hi)};
+}
+static Wide Add(Wide x, Wide y) {
+    Wide s = TwoSum(x.hi, y.hi);
+    return Renormalize(s.hi, s.lo + (x.lo + y.lo));
+}
+static Wide Mul(Wide x, Wide y) {
+    Wide p = TwoProduct(x.hi, y.hi);
+    return Renormalize(p.hi, p.lo + (x.hi * y.lo + x.lo * y.hi));
+}
+static Wide Neg(Wide x) { return {-x.hi, -x.lo}; }
+
+struct Wide3 {
+    Wide x, y, z;
+};
+// a - b exactly, per component, then times 2^k (exact)
+static Wide3 ExactDifference(dvec3 a, dvec3 b, double scale) {
+    Wide x = TwoSum(a.x, -b.x), y = TwoSum(a.y, -b.y), z = TwoSum(a.z, -b.z);
+    return {{scale * x.hi, scale * x.lo}, {scale * y.hi, scale * y.lo}, {scale * z.hi, scale * z.lo}};
+}
+static Wide WideDot(Wide3 a, Wide3 b) {
+    return Add(Add(Mul(a.x, b.x), Mul(a.y, b.y)), Mul(a.z, b.z));
+}
+static Wide3 WideCross(Wide3 a, Wide3 b) {
+    return {Add(Mul(a.y, b.z), Neg(Mul(a.z, b.y))), Add(Mul(a.z, b.x), Neg(Mul(a.x, b.z))),
+            Add(Mul(a.x, b.y), Neg(Mul(a.y, b.x)))};
+}
+
+// ---- the two tiers ------------------------------------------------------------------------
+
+// The triangle and the ray in double: corner a, the exact edges' operands, the edges as tier 1
+// rounds them (times `scale`, a power of two that keeps a triangle of size 1e-200 or 1e200 from
+// a normal that under- or overflows; n only matters up to its length), the ray.
+struct PlaneProblem {
+    dvec3 a, b, c;  // corners
+    double scale;   // 2^k, applied to the edges
+    dvec3 e1, e2;   // (b - a) scale and (c - a) scale, rounded
+    dvec3 n;        // e1 x e2, rounded
+    dvec3 nTerms;   // the sizes of the products in each component of n (CrossTerms)
+    dvec3 origin, dir;
+};
+
+// t and a bound on |t - t*|, where t* is the exact t of the exact plane through a, b, c.
+struct PlaneT {
+    double t, error;
+};
+
+// The error bound shared by both tiers, first order in the rounding errors: the numerator
+// n.(a - o) within eN, the denominator n.d within eD, each normal component within eNormal of
+// the exact one. A normal tilted by dn moves the plane at the hit point h by dn.(a - h), which
+// is why the way from the hit to the corner enters. Doubled, to cover the second-order terms
+// (products of two errors) that the first-order sum leaves out.
+static double PlaneError(double t, double denominator, double eN, double eD, dvec3 eNormal,
+                         dvec3 toCorner) {
+    return 2 * ((eN + std::fabs(t) * eD + DotD(eNormal, AbsD(toCorner))) / std::fabs(denominator));
+}
+
+// Tier 1's bound for its t (FindPlaneT below). Rounding bounds (Higham 2002, §3.1): a - o, its
+// product with n and the two additions, gamma(4) of sum |n_i (a_i - o_i)|; n.d, gamma(3) of
+// sum |n_i d_i|; each normal component, two edge roundings, the products and the subtraction:
+// gamma(5) of its two products' sizes; the division, gamma(1) of t.
+static double PlainError(const PlaneProblem *p, dvec3 toA, double t, double denominator) {
+    dvec3 absN = AbsD(p->n);
+    double eN = GammaD(4) * DotD(absN, AbsD(toA));
+    double eD = GammaD(3) * DotD(absN, AbsD(p->dir));
+    dvec3 toCorner = {toA.x - t * p->dir.x, toA.y - t * p->dir.y, toA.z - t * p->dir.z};
+    return PlaneError(t, denominator, eN, eD, Scale(GammaD(5), p->nTerms), toCorner) +
+           GammaD(1) * std::fabs(t);
+}
+
+// Tier 2: the formula in double-double, from the exact edges and the exact a - o. Every
+// operation is within 8 u^2 of its operands' sizes, and no value passes through more than four
+// of them, so 32 u^2 of the first-order terms' sizes bounds what they contribute; rounding the
+// two sums to double and dividing adds 3 u of t.
+static PlaneT WidePlaneT(const PlaneProblem *p) {
+    Wide3 e1 = ExactDifference(p->b, p->a, p->scale), e2 = ExactDifference(p->c, p->a, p->scale);
+    Wide3 n = WideCross(e1, e2), toA = ExactDifference(p->a, p->origin, 1);
+    Wide3 d = {{p->dir.x, 0}, {p->dir.y, 0}, {p->dir.z, 0}};
+    Wide numerator = WideDot(n, toA), denominator = WideDot(n, d);
+    double t = numerator.hi / denominator.hi;
+    dvec3 nHi = {n.x.hi, n.y.hi, n.z.hi}, toAHi = {toA.x.hi, toA.y.hi, toA.z.hi};
+    dvec3 e1Hi = {e1.x.hi, e1.y.hi, e1.z.hi}, e2Hi = {e2.x.hi, e2.y.hi, e2.z.hi};
+    double u2 = 32 * kU * kU;
+    double eN = u2 * DotD(AbsD(nHi), AbsD(toAHi));
+    double eD = u2 * DotD(AbsD(nHi), AbsD(p->dir));
+    dvec3 eNormal = Scale(u2, CrossTerms(e1Hi, e2Hi));
+    double error = PlaneError(t, denominator.hi, eN, eD, eNormal, Sub(toAHi, Scale(t, p->dir)));
+    return {t, error + GammaD(4) * std::fabs(t)};
+}
+
+// The edges and normal of tier 1. The edges are scaled by a power of two when they lie outside
+// 2^+-400 (within, n and n.(a - o) cannot leave the range of double); the power is clamped to
+// 2^+-1000, which a double holds: edges of 1e-310 then become 1e-9, far from underflow.
+static void SetUpPlane(const Triangle *tri, const Ray *ray, PlaneProblem *p) {
+    p->a = Widen(tri->a), p->b = Widen(tri->b), p->c = Widen(tri->c);
+    p->origin = Widen(ray->origin), p->dir = Widen(ray->dir);
+    p->e1 = Sub(p->b, p->a), p->e2 = Sub(p->c, p->a);
+    dvec3 m1 = AbsD(p->e1), m2 = AbsD(p->e2);
+    double m = std::max({m1.x, m1.y, m1.z, m2.x, m2.y, m2.z});
+    p->scale = 1;
+    if (!(m >= 0x1p-400 && m <= 0x1p400) && m > 0 && std::isfinite(m)) {
+        int k = -std::ilogb(m);
+        p->scale = std::ldexp(1.0, k < -1000 ? -1000 : k > 1000 ? 1000 : k);
+        p->e1 = Scale(p->scale, p->e1), p->e2 = Scale(p->scale, p->e2);
+    }
+    dvec3 e1 = p->e1, e2 = p->e2;
+    double yz = e1.y * e2.z, zy = e1.z * e2.y, zx = e1.z * e2.x, xz = e1.x * e2.z;
+    double xy = e1.x * e2.y, yx = e1.y * e2.x;
+    p->n = {yz - zy, zx - xz, xy - yx}; // CrossD(e1, e2), keeping its products for the bound
+    p->nTerms = {std::fabs(yz) + std::fabs(zy), std::fabs(zx) + std::fabs(xz),
+                 std::fabs(xy) + std::fabs(yx)};
+}
+
+// The plane's t for a ray whose line passes inside the triangle, and whether it counts: below
+// tMax (compared as rounded, like every t in the nearest-hit loop: an error there only swaps two
+// surfaces within rounding of each other), and above both tMin and its own error bound, so a
+// ray that starts on this plane, having just left it, does not hit it again. When tier 1's bound
+// cannot settle that, or is wider than kPlainRelativeError of t, tier 2 decides.
+static bool FindPlaneT(const PlaneProblem *p, real tMin, real tMax, PlaneT *plane) {
+    dvec3 toA = Sub(p->a, p->origin);
+    double denominator = DotD(p->n, p->dir);
+    double t = DotD(p->n, toA) / denominator;
+    if (!(t < (double)tMax)) // also NaN: the ray is parallel to the plane, or n is 0
+        return false;
+    *plane = {t, PlainError(p, toA, t, denominator)};
+    if (!(plane->t + plane->error > (double)tMin))
+        return false;
+    if (!(plane->t - plane->error > 0) || plane->error > kPlainRelativeError * std::fabs(t))
+        *plane = WidePlaneT(p);
+    return (real)plane->t > tMin && (real)plane->t < tMax && plane->t > plane->error;
+}
+
+// The hit record for a triangle whose interior the ray passes through (the caller has decided
+// that): t from the plane (FindPlaneT). The point is o + t d, which lies on the plane to within
+// its bound: the rounding of o + t d itself, and t's error times |d|.
+bool HitTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit) {
+    PlaneProblem p;
+    SetUpPlane(tri, ray, &p);
+    PlaneT plane;
+    if (!FindPlaneT(&p, tMin, tMax, &plane))
+        return false;
+
+    // The normal, for shading, and the side the ray came from
+    double length = std::sqrt(DotD(p.n, p.n));
+    if (!(length > 0) || !std::isfinite(length))
+        return false;
+    double inverse = 1 / length;
+    vec3 normal = {(real)(inverse * p.n.x), (real)(inverse * p.n.y), (real)(inverse * p.n.z)};
+    hit->frontFace = !(Dot(ray->dir, normal) > 0);
+    hit->normal = hit->frontFace ? normal : -normal;
+
+    real t = (real)plane.t;
+    vec3 along = t * ray->dir;
+    hit->t = t;
+    hit->point = ray->origin + along;
+    real tError = (real)plane.error + Gamma(1) * t;
+    hit->pointError = Gamma(2) * (Abs(hit->point) + Abs(along)) + tError * Abs(ray->dir);
+    hit->material = tri->material;
+    hit->shape = SHAPE_TRIANGLE;
+    return true;
+}
