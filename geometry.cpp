@@ -88,13 +88,13 @@ static bool SolveSphere(vec3 f, vec3 d, real r, real tMin, real tMax, real *tHit
 
 // The sphere test for a ray and sphere of any size. SolveSphere squares lengths (d.d, r^2,
 // |f x d|^2), which overflow for a light 1e153 away and underflow for a sphere of radius
-// 1e-200. So outside the windows of ray.h it runs in rescaled units: d times 2^kd (largest component in [1, 2)) and every
-// length in units of about the radius (times 2^kr, r in [1, 2)). Each root is then
-// t' = t 2^(kr - kd). Powers of two are exact, so where nothing over- or underflowed this gives
-// the very bits of the unscaled arithmetic. No root is discarded as "too close to 0": a ray
-// that leaves this sphere starts outside its rounding error (OffsetRayOrigin), so c0 has the
-// right sign and the root it would re-hit is negative; a probe that starts a hair outside the
-// sphere still sees it (a hit at t = 3e-11).
+// 1e-200. So outside the windows of ray.h it runs in rescaled units: d times 2^kd (largest
+// component in [1, 2)) and every length in units of about the radius (times 2^kr, r in [1, 2)).
+// Each root is then t' = t 2^(kr - kd). Powers of two are exact, so where nothing over- or
+// underflowed this gives the very bits of the unscaled arithmetic. No root is discarded as "too
+// close to 0": a ray that leaves this sphere starts outside its rounding error (OffsetRayOrigin),
+// so c0 has the right sign and the root it would re-hit is negative; a probe that starts a hair
+// outside the sphere still sees it (a hit at t = 3e-11).
 bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
     if (!(s->radius > 0) || !std::isfinite(s->radius))
         return false;
@@ -357,9 +357,10 @@ bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax
     if (!ScaleRay(ray, tMin, tMax, &s))
         return false;
     ShearRay(&s.ray, &shear);
-    bool hits = shear.kz == 0   ? IntersectShearedTriangle<0>(tri, &s.ray, &shear, s.tMin, s.tMax, &found)
-                : shear.kz == 1 ? IntersectShearedTriangle<1>(tri, &s.ray, &shear, s.tMin, s.tMax, &found)
-                                : IntersectShearedTriangle<2>(tri, &s.ray, &shear, s.tMin, s.tMax, &found);
+    bool hits =
+        shear.kz == 0   ? IntersectShearedTriangle<0>(tri, &s.ray, &shear, s.tMin, s.tMax, &found)
+        : shear.kz == 1 ? IntersectShearedTriangle<1>(tri, &s.ray, &shear, s.tMin, s.tMax, &found)
+                        : IntersectShearedTriangle<2>(tri, &s.ray, &shear, s.tMin, s.tMax, &found);
     if (!hits || !ScaleBack(&s, tMin, tMax, &found))
         return false;
     *hit = found;
@@ -465,11 +466,14 @@ static bool HitShapes(const Scene *scene, Methods methods, const Ray *unscaled, 
         RayShear shear;
         ShearRay(ray, &shear);
         if (shear.kz == 0)
-            any = HitTriangles<0>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, &found) || any;
+            any =
+                HitTriangles<0>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, &found) || any;
         else if (shear.kz == 1)
-            any = HitTriangles<1>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, &found) || any;
+            any =
+                HitTriangles<1>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, &found) || any;
         else
-            any = HitTriangles<2>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, &found) || any;
+            any =
+                HitTriangles<2>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, &found) || any;
     }
     if (!any || !ScaleBack(&s, tMin, tMax, &found))
         return false;

@@ -32,7 +32,8 @@ static double DotD(dvec3 a, dvec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z;
 static dvec3 AbsD(dvec3 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
 // The sizes of the two products in each component of a x b: what its rounding error scales with.
 static dvec3 CrossTerms(dvec3 a, dvec3 b) {
-    return {std::fabs(a.y * b.z) + std::fabs(a.z * b.y), std::fabs(a.z * b.x) + std::fabs(a.x * b.z),
+    return {std::fabs(a.y * b.z) + std::fabs(a.z * b.y),
+            std::fabs(a.z * b.x) + std::fabs(a.x * b.z),
             std::fabs(a.x * b.y) + std::fabs(a.y * b.x)};
 }
 
@@ -86,7 +87,8 @@ struct Wide3 {
 // a - b exactly, per component, then times 2^k (exact)
 static Wide3 ExactDifference(dvec3 a, dvec3 b, double scale) {
     Wide x = TwoSum(a.x, -b.x), y = TwoSum(a.y, -b.y), z = TwoSum(a.z, -b.z);
-    return {{scale * x.hi, scale * x.lo}, {scale * y.hi, scale * y.lo}, {scale * z.hi, scale * z.lo}};
+    return {
+        {scale * x.hi, scale * x.lo}, {scale * y.hi, scale * y.lo}, {scale * z.hi, scale * z.lo}};
 }
 static Wide WideDot(Wide3 a, Wide3 b) {
     return Add(Add(Mul(a.x, b.x), Mul(a.y, b.y)), Mul(a.z, b.z));
@@ -102,11 +104,11 @@ static Wide3 WideCross(Wide3 a, Wide3 b) {
 // rounds them (times `scale`, a power of two that keeps a triangle of size 1e-200 or 1e200 from
 // a normal that under- or overflows; n only matters up to its length), the ray.
 struct PlaneProblem {
-    dvec3 a, b, c;  // corners
-    double scale;   // 2^k, applied to the edges
-    dvec3 e1, e2;   // (b - a) scale and (c - a) scale, rounded
-    dvec3 n;        // e1 x e2, rounded
-    dvec3 nTerms;   // the sizes of the products in each component of n (CrossTerms)
+    dvec3 a, b, c; // corners
+    double scale;  // 2^k, applied to the edges
+    dvec3 e1, e2;  // (b - a) scale and (c - a) scale, rounded
+    dvec3 n;       // e1 x e2, rounded
+    dvec3 nTerms;  // the sizes of the products in each component of n (CrossTerms)
     dvec3 origin, dir;
 };
 

@@ -58,5 +58,6 @@ void TestCorpus();
 void TestEffects();
 void TestHardCases();
 void TestStability();
+void TestLongTriangles();
 
 #endif

@@ -57,6 +57,7 @@ int main() {
     TestEffects();
     TestHardCases();
     TestStability();
+    TestLongTriangles();
     TestSceneFiles();
     TestProbes();
     TestProgram();
