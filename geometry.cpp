@@ -7,6 +7,7 @@
 // form stays selectable for teaching. Compiled with -ffp-contract=off: see the Makefile.
 #include "ray.h"
 
+#include <algorithm>
 #include <cassert>
 
 // Writes the fields every shape fills the same way; `outwardNormal` must be unit length.
@@ -149,18 +150,21 @@ bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tM
     return true;
 }
 
-// a.x * b.y - a.y * b.x with the correct sign, also when the plain product difference rounds to
-// 0. In float the products are exact in double. In double, Kahan's difference of products with
-// fused multiply-adds is within 2 ulp of the exact value (Jeannerod, Louvet & Muller, Math.
-// Comp. 2013), so its sign, and whether it is 0, are exact.
-static real ExactEdgeFunction(real ax, real ay, real bx, real by) {
+// The sign of a.x * b.y - a.y * b.x (-1, 0 or 1), exact, also where the rounded difference of
+// products is 0 or NaN (inf - inf). In float the products are exact in double, and no float
+// squared leaves double's range. In double, Kahan's difference of products with fused
+// multiply-adds is within 2 ulp of the exact value (Jeannerod, Louvet & Muller, Math. Comp.
+// 2013), so its sign, and whether it is 0, are exact; the caller has scaled the corners so that
+// no product over- or underflows.
+static real EdgeSign(real ax, real ay, real bx, real by) {
 #ifdef RT_FLOAT
-    return (real)((double)ax * (double)by - (double)ay * (double)bx);
+    double e = (double)ax * (double)by - (double)ay * (double)bx;
 #else
     real product = ay * bx;
     real productError = std::fma(-ay, bx, product);
-    return std::fma(ax, by, -product) + productError;
+    real e = std::fma(ax, by, -product) + productError;
 #endif
+    return e > 0 ? real(1) : e < 0 ? real(-1) : real(0);
 }
 
 // Fills the hit record of a triangle hit at ray parameter t with barycentric coordinates
@@ -237,12 +241,25 @@ struct ShearedTriangle {
     real az, bz, cz;
 };
 
-// The three edge functions of the sheared triangle (IntersectShearedTriangle), each exact in
-// sign and in being 0. Called only when a rounded one came out 0, so it is kept out of line.
-static void ExactEdgeFunctions(const ShearedTriangle *s, real *u, real *v, real *w) {
-    *u = ExactEdgeFunction(s->cx, s->cy, s->bx, s->by);
-    *v = ExactEdgeFunction(s->ax, s->ay, s->cx, s->cy);
-    *w = ExactEdgeFunction(s->bx, s->by, s->ax, s->ay);
+// The signs of the three edge functions of the sheared triangle (IntersectShearedTriangle), exact.
+// Called only when a rounded one came out 0 or NaN, so it is kept out of line. In double the
+// corners are first scaled by a power of two so the largest coordinate is near 1: products of
+// corners 1e-200 or 1e200 from the ray origin then neither underflow nor overflow (float needs
+// no scaling: its products are computed in double).
+static void ExactEdgeSigns(ShearedTriangle s, real *u, real *v, real *w) {
+#ifndef RT_FLOAT
+    real largest = std::max({std::fabs(s.ax), std::fabs(s.ay), std::fabs(s.bx), std::fabs(s.by),
+                             std::fabs(s.cx), std::fabs(s.cy)});
+    if (largest > 0 && std::isfinite(largest)) {
+        int k = -BinaryExponent(largest);
+        real *coordinate[6] = {&s.ax, &s.ay, &s.bx, &s.by, &s.cx, &s.cy};
+        for (real *c : coordinate)
+            *c = ScaleByPowerOfTwo(*c, k);
+    }
+#endif
+    *u = EdgeSign(s.cx, s.cy, s.bx, s.by);
+    *v = EdgeSign(s.ax, s.ay, s.cx, s.cy);
+    *w = EdgeSign(s.bx, s.by, s.ax, s.ay);
 }
 
 // The corners of a triangle as the ray sees them: moved to the ray origin, renamed, sheared.
@@ -290,12 +307,15 @@ static bool IntersectShearedTriangle(const Triangle *tri, const Ray *ray, const 
     // Translate the corners to the ray origin and shear them so the ray is the +z axis
     ShearedTriangle s = ShearCorners<kz>(tri, k);
 
-    // The 2D edge functions; recompute exactly any that rounded to 0
+    // The 2D edge functions
     real u, v, w;
     if (EdgesDisagree(&s, &u, &v, &w))
         return false;
-    if (u == 0 || v == 0 || w == 0)
-        ExactEdgeFunctions(&s, &u, &v, &w);
+    // Rounding is monotonic, also into the subnormals and to infinity, so a rounded edge function
+    // has its exact sign, or is 0, or is NaN (two products that both overflowed): those two are
+    // decided exactly
+    if (u == 0 || v == 0 || w == 0 || std::isnan(u) || std::isnan(v) || std::isnan(w))
+        ExactEdgeSigns(s, &u, &v, &w);
 
     // Reject if the signs differ (the ray passes outside an edge) or the ray is in the plane
     if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0))

@@ -161,8 +161,9 @@ static PlaneT WidePlaneT(const PlaneProblem *p) {
 }
 
 // The edges and normal of tier 1. The edges are scaled by a power of two when they lie outside
-// 2^+-400 (within, n and n.(a - o) cannot leave the range of double); the power is clamped to
-// 2^+-1000, which a double holds: edges of 1e-310 then become 1e-9, far from underflow.
+// 2^+-64, so that n is within 2^+-130 of 1 (less for a sliver) and n.(a - o) cannot over- or
+// underflow for any a - o that is itself a number; the power is clamped to 2^+-1000, which a
+// double holds: edges of 1e-310 then become 1e-9, far from underflow.
 static void SetUpPlane(const Triangle *tri, const Ray *ray, PlaneProblem *p) {
     p->a = Widen(tri->a), p->b = Widen(tri->b), p->c = Widen(tri->c);
     p->origin = Widen(ray->origin), p->dir = Widen(ray->dir);
@@ -170,7 +171,7 @@ static void SetUpPlane(const Triangle *tri, const Ray *ray, PlaneProblem *p) {
     dvec3 m1 = AbsD(p->e1), m2 = AbsD(p->e2);
     double m = std::max({m1.x, m1.y, m1.z, m2.x, m2.y, m2.z});
     p->scale = 1;
-    if (!(m >= 0x1p-400 && m <= 0x1p400) && m > 0 && std::isfinite(m)) {
+    if (!(m >= 0x1p-64 && m <= 0x1p64) && m > 0 && std::isfinite(m)) {
         int k = -std::ilogb(m);
         p->scale = std::ldexp(1.0, k < -1000 ? -1000 : k > 1000 ? 1000 : k);
         p->e1 = Scale(p->scale, p->e1), p->e2 = Scale(p->scale, p->e2);
@@ -212,12 +213,17 @@ bool HitTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax,
     if (!FindPlaneT(&p, tMin, tMax, &plane))
         return false;
 
-    // The normal, for shading, and the side the ray came from
-    double length = std::sqrt(DotD(p.n, p.n));
-    if (!(length > 0) || !std::isfinite(length))
-        return false;
-    double inverse = 1 / length;
-    vec3 normal = {(real)(inverse * p.n.x), (real)(inverse * p.n.y), (real)(inverse * p.n.z)};
+    // The unit normal, for shading, and the side the ray came from. A sliver's n may be so small
+    // that n.n underflows: then it is scaled by a power of two first, which changes no bit of
+    // n / |n|.
+    dvec3 n = p.n;
+    double largest = std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
+    if (!(largest > 0) || !std::isfinite(largest))
+        return false; // no area: no normal
+    if (!(largest >= 0x1p-500 && largest <= 0x1p500))
+        n = Scale(std::ldexp(1.0, -std::ilogb(largest)), n);
+    double inverse = 1 / std::sqrt(DotD(n, n));
+    vec3 normal = {(real)(inverse * n.x), (real)(inverse * n.y), (real)(inverse * n.z)};
     hit->frontFace = !(Dot(ray->dir, normal) > 0);
     hit->normal = hit->frontFace ? normal : -normal;
 

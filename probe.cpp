@@ -85,19 +85,12 @@ std::string ProbeErrorJson(const std::string &message) {
     return "{\"error\":" + Quoted(message) + "}";
 }
 
-// A probe's direction may be any finite size, 1e-200 or 1e200, where d.d would underflow or
-// overflow. It is scaled by a power of two to a largest component in [1, 2): exact, and so is
-// converting t back, t = t' * scale, unless t itself leaves the range of numbers.
+// The direction may be any finite size, 1e-310 or 1e300: the shape tests rescale it (see
+// ScaleRay in geometry.cpp), so t is in units of the direction as given.
 std::string ProbeRayJson(const Scene *scene, const RenderSettings *settings, const Ray *ray) {
-    real largest =
-        std::fmax(std::fabs(ray->dir.x), std::fmax(std::fabs(ray->dir.y), std::fabs(ray->dir.z)));
-    int exponent;
-    std::frexp(largest, &exponent);
-    Ray scaled = {ray->origin, std::ldexp(real(1), 1 - exponent) * ray->dir};
     RayHit hit;
-    if (!FindNearestHit(scene, settings->methods, &scaled, 0, kInfinity, &hit))
+    if (!FindNearestHit(scene, settings->methods, ray, 0, kInfinity, &hit))
         return "{\"hit\":false}";
-    hit.t = std::ldexp(hit.t, 1 - exponent);
     return HitJson(scene, &hit);
 }
 

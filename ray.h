@@ -142,6 +142,12 @@ inline int UnitExponent(vec3 v) {
     return m > 0 && std::isfinite(m) ? -BinaryExponent(m) : 0;
 }
 
+// |v| for v of any finite size, by the same rescaling.
+inline real SafeLength(vec3 v) {
+    int k = UnitExponent(v);
+    return ScaleByPowerOfTwo(Length(ScaleByPowerOfTwo(v, k)), -k);
+}
+
 // A unit vector in the direction of v, for v of any finite size (1e-300 or 1e300), by rescaling
 // before squaring. The zero vector stays zero.
 inline vec3 SafeNormalize(vec3 v) {
@@ -184,6 +190,9 @@ struct Camera {
     vec3 lowerLeft;          // the screen's lower-left corner l,
     vec3 horizontal;         // its bottom edge h, from l to the lower-right corner,
     vec3 vertical;           // and its left edge v, from l to the upper-left corner
+    vec3 toCorner;           // l - e, the corner seen from the eye (set by PlanRender): every
+                             // pixel's direction is built from it, never from l itself, so it
+                             // does not depend on how far the eye is from the origin
     vec3 from, to, up;       // CAMERA_LOOKAT
     real fovDegrees;         // CAMERA_LOOKAT: vertical field of view
 };
@@ -419,8 +428,14 @@ void GetScreenRay(const Camera *camera, int width, int height, vec2 screenCoord,
 void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray);
 
 // A `camera lookat` in the screen form for a W x H image, the screen one unit in front of the
-// eye. Returns false if from = to, up is parallel to the view, or fov is not in (0, 180).
-bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen);
+// eye. Returns false, with *error saying which, if from = to, up is along the view, or fov is not
+// in (0, 180).
+bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen,
+                    std::string *error);
+
+// Whether a `camera screen` can make a ray through every pixel: h and v non-zero and not parallel,
+// and the eye off the screen's plane (else every ray lies in that plane). False with *error.
+bool ScreenCameraIsValid(const Camera *camera, std::string *error);
 
 // Fills in what follows from the scene and the rest of *settings: the effects the render can
 // need (PlanEffects) and the camera prepared for settings->width x settings->height.

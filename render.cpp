@@ -26,14 +26,14 @@ void GetRay(Perspective p, vec2 screenCoord, Ray *ray) {
     ray->dir = {x, y, -p.distance};
 }
 
-// round(clamp(c, 0, 1) * 255); a NaN (which no shading path should produce) becomes 0.
 // The second handout's screen: pixel centres l + (i + .5)/W h + (j + .5)/H v with j counted
 // from the bottom; an image row y counts from the top, so the vertical fraction is (H - y) / H.
+// The direction is built from the corner as seen from the eye, l - e (PlanRender), not from l:
+// with the eye 1e15 from the origin, l + ... - e would lose the screen to rounding.
 void GetScreenRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray) {
     real across = screenCoord.x / width, up = (height - screenCoord.y) / height;
-    vec3 onScreen = camera->lowerLeft + across * camera->horizontal + up * camera->vertical;
     ray->origin = camera->eye;
-    ray->dir = onScreen - camera->eye;
+    ray->dir = camera->toCorner + across * camera->horizontal + up * camera->vertical;
 }
 
 void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray) {
@@ -45,21 +45,51 @@ void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord,
 
 // An orthonormal frame at the eye: w points back from the view, u right, v up (FCG §4.3). The
 // screen stands one unit in front of the eye, tan(fov / 2) high above the centre, and as wide as
-// the image's aspect ratio makes it (square pixels).
-bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen) {
-    vec3 back = lookAt->from - lookAt->to;
-    vec3 right = Cross(lookAt->up, back);
+// the image's aspect ratio makes it (square pixels). Every vector is normalised after rescaling
+// (SafeNormalize), so a camera 1e200 from its target works, and the corner is kept relative to
+// the eye (toCorner), so a camera 1e30 from the origin does too.
+bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen,
+                    std::string *error) {
+    vec3 w = SafeNormalize(lookAt->from - lookAt->to);
+    vec3 u = SafeNormalize(Cross(SafeNormalize(lookAt->up), w));
     real fov = lookAt->fovDegrees;
-    if (!(Dot(back, back) > 0) || !(Dot(right, right) > 0) || !(fov > 0 && fov < 180))
+    if (!(MaxComponent(w) > 0) || !IsFinite(w)) {
+        *error = "from and to are the same point (or too far apart to subtract)";
         return false;
-    vec3 w = Normalize(back), u = Normalize(right), v = Cross(w, u);
+    }
+    if (!(MaxComponent(u) > 0) || !IsFinite(u)) {
+        *error = "up is zero or along the view direction";
+        return false;
+    }
+    if (!(fov > 0 && fov < 180)) {
+        *error = "the field of view must be between 0 and 180 degrees";
+        return false;
+    }
+    vec3 v = Cross(w, u);
     real halfHeight = std::tan(fov * real(M_PI / 360)), halfWidth = halfHeight * width / height;
     *screen = *lookAt;
     screen->kind = CAMERA_SCREEN;
     screen->eye = lookAt->from;
-    screen->lowerLeft = lookAt->from - w - halfWidth * u - halfHeight * v;
+    screen->toCorner = -w - halfWidth * u - halfHeight * v;
+    screen->lowerLeft = lookAt->from + screen->toCorner;
     screen->horizontal = (2 * halfWidth) * u;
     screen->vertical = (2 * halfHeight) * v;
+    return true;
+}
+
+bool ScreenCameraIsValid(const Camera *c, std::string *error) {
+    vec3 h = SafeNormalize(c->horizontal), v = SafeNormalize(c->vertical);
+    vec3 normal = SafeNormalize(Cross(h, v));
+    if (!(MaxComponent(normal) > 0) || !IsFinite(normal)) {
+        *error = "the edges h and v must be non-zero and not parallel";
+        return false;
+    }
+    vec3 toCorner = c->lowerLeft - c->eye;
+    if (!IsFinite(toCorner) || !(std::fabs(Dot(normal, SafeNormalize(toCorner))) > 0)) {
+        *error = "the eye lies on the screen's plane (or is too far from it to subtract), so no "
+                 "ray can pass through the screen";
+        return false;
+    }
     return true;
 }
 
@@ -68,8 +98,11 @@ void PlanRender(const Scene *scene, RenderSettings *settings) {
     settings->camera = scene->camera;
     settings->camera.perspective.widthPixels = settings->width;
     settings->camera.perspective.heightPixels = settings->height;
+    settings->camera.toCorner = scene->camera.lowerLeft - scene->camera.eye;
+    std::string unused;
     if (scene->camera.kind == CAMERA_LOOKAT) // checked when the scene was read
-        LookAtToScreen(&scene->camera, settings->width, settings->height, &settings->camera);
+        LookAtToScreen(&scene->camera, settings->width, settings->height, &settings->camera,
+                       &unused);
 }
 
 uint8_t ToByte(real c) {

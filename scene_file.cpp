@@ -297,10 +297,9 @@ static bool ReadCamera(const Statement *st, Scene *scene, std::string *error) {
         c.lowerLeft = {v[3], v[4], v[5]};
         c.horizontal = {v[6], v[7], v[8]};
         c.vertical = {v[9], v[10], v[11]};
-        vec3 normal = Cross(c.horizontal, c.vertical);
-        if (!(Dot(normal, normal) > 0) || !IsFinite(normal))
-            return Fail(st, "camera screen: the edges h and v must be non-zero and not parallel",
-                        error);
+        std::string why;
+        if (!ScreenCameraIsValid(&c, &why))
+            return Fail(st, "camera screen: " + why, error);
     } else if (kind == "lookat") {
         if (!Numbers(st, 2, 10, 12, v, error))
             return false;
@@ -310,11 +309,9 @@ static bool ReadCamera(const Statement *st, Scene *scene, std::string *error) {
         c.up = {v[6], v[7], v[8]};
         c.fovDegrees = v[9];
         Camera check;
-        if (!LookAtToScreen(&c, 1, 1, &check))
-            return Fail(st,
-                        "camera lookat: needs from != to, up not along the view, and a "
-                        "field of view between 0 and 180 degrees",
-                        error);
+        std::string why;
+        if (!LookAtToScreen(&c, 1, 1, &check, &why))
+            return Fail(st, "camera lookat: " + why, error);
     } else {
         return Fail(
             st, "camera: unknown kind " + Shown(kind) + " (expected perspective, screen or lookat)",

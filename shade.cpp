@@ -73,7 +73,7 @@ static color FloorColor(const Scene *scene, const RenderSettings *settings, cons
         real nDotL = Dot(hit->normal, toLight);
         if (!(nDotL > 0) || !LightIsVisible(scene, settings, hit, &light, log))
             continue;
-        sum = sum + (nDotL / Length(toLight)) * light.intensity;
+        sum = sum + (nDotL / SafeLength(toLight)) * light.intensity;
     }
     color floor = {scene->ambient, scene->ambient, scene->ambient};
     return m->diffuse * Max(floor, sum);
@@ -87,10 +87,10 @@ static color FloorColor(const Scene *scene, const RenderSettings *settings, cons
 static color PhongColor(const Scene *scene, const RenderSettings *settings, const Ray *ray,
                         const RayHit *hit, const Material *m, TraceLog *log) {
     color result = scene->ambient * m->ambient;
-    vec3 n = hit->normal, v = -Normalize(ray->dir);
+    vec3 n = hit->normal, v = -SafeNormalize(ray->dir);
     bool specular = settings->effects.specular && m->specular > 0;
     for (const Light &light : scene->lights) {
-        vec3 l = Normalize(light.position - hit->point);
+        vec3 l = SafeNormalize(light.position - hit->point);
         real nDotL = Dot(n, l);
         if (!(nDotL > 0) || !LightIsVisible(scene, settings, hit, &light, log))
             continue;
@@ -106,17 +106,37 @@ static color PhongColor(const Scene *scene, const RenderSettings *settings, cons
     return result;
 }
 
+// cos(t), the cosine of the refracted angle, for cos(i) and eta = n1 / n2; false under total
+// internal reflection. Snell's law gives cos^2(t) = 1 - eta^2 (1 - cos^2(i)); written that way it
+// cancels at grazing incidence (cos(i) near 0), where 1 - cos^2(i) rounds to 1: glass of index 1
+// then reflects totally below cos(i) = 1e-8 and bends rays above it. The same quantity as
+//   cos^2(t) = (1 - eta)(1 + eta) + (eta cos(i))^2
+// has no cancellation (1 - eta is exact for eta in [1/2, 2], Sterbenz), so eta = 1 passes every
+// ray straight through, however grazing; for eta > 1 the test for total internal reflection is
+// eta cos(i) <= sqrt((eta - 1)(eta + 1)), and hypot keeps (eta cos(i))^2 from underflowing.
+static bool RefractedCosine(real cosI, real eta, real *cosT) {
+    real etaCos = eta * cosI;
+    if (eta <= 1) {
+        *cosT = std::hypot(std::sqrt((1 - eta) * (1 + eta)), etaCos);
+        return true;
+    }
+    real m = std::sqrt((eta - 1) * (eta + 1));
+    if (!(etaCos > m))
+        return false;
+    *cosT = std::sqrt((etaCos - m) * (etaCos + m));
+    return true;
+}
+
 // Snell's law, n1 sin(i) = n2 sin(t), for unit d arriving against the unit normal n (d.n <= 0)
 // and eta = n1 / n2: t = eta d + (eta cos(i) - cos(t)) n (Shirley & Marschner, FCG §13.1).
 // Returns false, and leaves *t alone, for total internal reflection (sin(t) >= 1). The cosine is
-// clamped to [0, 1] because d.n of unit vectors can round past 1 (HARD_CASES REF-4).
+// clamped to [0, 1] because d.n of unit vectors can round past 1.
 bool Refract(vec3 d, vec3 n, real eta, vec3 *t) {
     real cosI = std::min(real(1), std::max(real(0), -Dot(d, n)));
-    real sin2T = eta * eta * (1 - cosI * cosI);
-    if (sin2T >= 1)
+    real cosT;
+    if (!RefractedCosine(cosI, eta, &cosT))
         return false;
-    real cosT = std::sqrt(1 - sin2T);
-    *t = eta * d + (eta * cosI - cosT) * n;
+    *t = eta * d + (eta * cosI - cosT) * n; // handout: cosT = sqrt(1 - eta^2 (1 - cosI^2))
     return true;
 }
 
@@ -124,13 +144,14 @@ bool Refract(vec3 d, vec3 n, real eta, vec3 *t) {
 // s- and p-polarised amplitudes squared (Hecht, Optics §4.6.2; pbrt-v4 §9.5), for the cosine of
 // the incident angle and eta = n1 / n2. 1 under total internal reflection. Exact rather than
 // Schlick's approximation, because Schlick is only right on the side of the smaller index:
-// evaluated inside glass it misses the rise to 1 at the critical angle (HARD_CASES REF-3).
+// evaluated inside glass it misses the rise to 1 at the critical angle.
 real FresnelReflectance(real cosI, real eta) {
     cosI = std::min(real(1), std::max(real(0), cosI));
-    real sin2T = eta * eta * (1 - cosI * cosI);
-    if (sin2T >= 1)
+    real cosT;
+    if (!RefractedCosine(cosI, eta, &cosT))
         return 1;
-    real cosT = std::sqrt(1 - sin2T);
+    if (!(eta * cosI + cosT > 0)) // a ray exactly along a surface of index 1: nothing to divide
+        return 0;
     real rs = (eta * cosI - cosT) / (eta * cosI + cosT);
     real rp = (cosI - eta * cosT) / (cosI + eta * cosT);
     return (rs * rs + rp * rp) / 2;
@@ -153,7 +174,7 @@ static color FollowRay(const Scene *scene, const RenderSettings *settings, RayKi
 // reflection R = 1 and no refracted ray is cast.
 static color GlassColor(const Scene *scene, const RenderSettings *settings, const Ray *ray,
                         const RayHit *hit, const Material *m, RayChain chain, TraceLog *log) {
-    vec3 d = Normalize(ray->dir), n = hit->normal;
+    vec3 d = SafeNormalize(ray->dir), n = hit->normal;
     real eta = hit->frontFace ? 1 / m->ior : m->ior;
     real reflectance = FresnelReflectance(-Dot(d, n), eta);
     vec3 mirrored = d - (2 * Dot(d, n)) * n;
