@@ -1,17 +1,32 @@
 // probe.cpp -- the handout's debugging advice as a feature: fire one ray, read the hit.
 //
 // `--ray` and `--rays` print the nearest hit of a ray as one JSON line; `--pixel` prints the whole
-// tree of rays behind one pixel (SPEC section 4). Numbers are printed with 17 significant digits,
-// so they read back exactly.
+// tree of rays behind one pixel. Numbers are printed in the shortest form that reads back
+// exactly.
 #include "ray.h"
 
 #include <cstdio>
+#include <cstdlib>
 
+// The shortest decimal that reads back as exactly v: `4.2`, not `4.2000000000000002` (at most 17
+// significant digits for double, 9 for float). Every hit and ray is finite (the fuzz check holds
+// them to it), but the output must be JSON whatever happens, so a NaN would print as 0 and an
+// infinity as the largest finite number.
 static std::string Number(real v) {
-    if (v == 0) // -0 (a normal turned toward the ray) reads as 0
+    if (v == 0 || std::isnan(v)) // -0 (a normal turned toward the ray) reads as 0
         v = 0;
+    if (std::isinf(v))
+        v = std::copysign(std::numeric_limits<real>::max(), v);
     char text[32];
-    snprintf(text, sizeof text, "%.17g", (double)v);
+    for (int digits = 1; digits <= 17; digits++) {
+        snprintf(text, sizeof text, "%.*g", digits, (double)v);
+#ifdef RT_FLOAT
+        if (strtof(text, nullptr) == v)
+#else
+        if (strtod(text, nullptr) == v)
+#endif
+            break;
+    }
     return text;
 }
 

@@ -42,6 +42,9 @@ RenderSettings TestSettings(const Scene *scene);
 Material Matte(const char *name, color kd);
 Material Mirror(const char *name, real k);
 
+// The share of pixels whose channels all lie within 2/255 of the other image's (same size).
+double ShareAlike(const Image &a, const Image &b);
+
 // The program under test for command-line checks: $RAY, or ./ray (./ray_float in the float build).
 std::string RayProgram();
 
@@ -59,5 +62,6 @@ void TestEffects();
 void TestHardCases();
 void TestStability();
 void TestLongTriangles();
+void TestRanges();
 
 #endif

@@ -1,6 +1,7 @@
 // tests/test_main.cpp -- the harness: counts checks, prints failures, runs every group.
 #include "test.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
@@ -37,6 +38,18 @@ RenderSettings TestSettings(const Scene *scene) {
     return s;
 }
 
+// The share of pixels whose channels all lie within 2/255 of the other image's.
+double ShareAlike(const Image &a, const Image &b) {
+    long alike = 0, pixels = (long)a.width * a.height;
+    for (long p = 0; p < pixels; p++) {
+        int largest = 0;
+        for (int c = 0; c < 3; c++)
+            largest = std::max(largest, std::abs(a.pixels[3 * p + c] - b.pixels[3 * p + c]));
+        alike += largest <= 2;
+    }
+    return (double)alike / pixels;
+}
+
 std::string RayProgram() {
     const char *fromEnvironment = getenv("RAY");
     if (fromEnvironment && *fromEnvironment)
@@ -58,6 +71,7 @@ int main() {
     TestHardCases();
     TestStability();
     TestLongTriangles();
+    TestRanges();
     TestSceneFiles();
     TestProbes();
     TestProgram();

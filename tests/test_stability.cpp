@@ -23,18 +23,6 @@ static Scene Transformed(const Scene &original, real scale, vec3 shift) {
     return s;
 }
 
-// The share of pixels whose channels all lie within 2/255 of the other image's.
-static double ShareAlike(const Image &a, const Image &b) {
-    long alike = 0, pixels = (long)a.width * a.height;
-    for (long p = 0; p < pixels; p++) {
-        int largest = 0;
-        for (int c = 0; c < 3; c++)
-            largest = std::max(largest, std::abs(a.pixels[3 * p + c] - b.pixels[3 * p + c]));
-        alike += largest <= 2;
-    }
-    return (double)alike / pixels;
-}
-
 static void TestScaleInvariance() {
     Scene scene;
     BuildDefaultScene(&scene);
