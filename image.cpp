@@ -1,40 +1,33 @@
-// image.cpp -- PNG files, through libpng's simplified API (png_image, libpng 1.6).
+// image.cpp -- image files (PNG through libpng's simplified API, binary PPM) and comparing images.
 //
 // An image is written to a temporary file beside the target and renamed over it only when the
 // whole file is on disk, so a failed or interrupted run never leaves a broken or half-written
-// image, and an existing file stays exactly as it was.
+// image, and an existing file stays exactly as it was. What the output path may be is checked
+// before any work is done (CheckOutputPath): never an input of the same run, never a file made
+// read-only; devices and FIFOs are written to directly.
 #include "ray.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
+#include <climits>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <png.h>
+#include <pthread.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 // Compression: PNG_IMAGE_FLAG_FAST (no row filters, zlib level 3 in libpng 1.6) instead of the
-// default (adaptive filters, zlib level 6). Measured on the assignment image (README, "PNG
-// compression"): the default costs about as much as the whole render, the fast setting a
-// fraction of it, and the assignment image's flat colours still compress well.
+// default (adaptive filters, zlib level 6). Measured on the assignment image (docs/speed.md):
+// the default costs about as much as the whole render, the fast setting a fraction of it, and
+// the assignment image's flat colours still compress well.
 static const png_uint_32 kPngFlags = PNG_IMAGE_FLAG_FAST;
 
-bool WritePng(const char *path, const Image *image, std::string *error) {
-    std::string temporary = std::string(path) + ".XXXXXX";
-    int fd = mkstemp(&temporary[0]);
-    if (fd < 0) {
-        *error = std::string(path) + ": " + strerror(errno);
-        return false;
-    }
-    FILE *file = fdopen(fd, "wb");
-    if (!file) {
-        *error = std::string(path) + ": " + strerror(errno);
-        close(fd);
-        unlink(temporary.c_str());
-        return false;
-    }
-
+// The image as PNG on an open file.
+static bool EncodePng(FILE *file, const Image *image, std::string *error) {
     png_image png;
     memset(&png, 0, sizeof png);
     png.version = PNG_IMAGE_VERSION;
@@ -44,26 +37,165 @@ bool WritePng(const char *path, const Image *image, std::string *error) {
     png.flags = kPngFlags;
     bool written = png_image_write_to_stdio(&png, file, 0, image->pixels.data(), 0, nullptr) != 0;
     if (!written)
-        *error = std::string(path) + ": " + png.message;
+        *error = png.message;
     png_image_free(&png);
+    return written;
+}
 
-    // fclose flushes; a full disk shows up here, not earlier
-    if (fclose(file) != 0 && written) {
-        *error = std::string(path) + ": " + strerror(errno);
-        written = false;
+// The image as binary PPM (P6): a text header, then the RGB bytes, rows from the top. The format
+// Ray Tracing in One Weekend starts from, readable by almost any image program.
+static bool EncodePpm(FILE *file, const Image *image, std::string *error) {
+    bool written =
+        fprintf(file, "P6\n%d %d\n255\n", image->width, image->height) > 0 &&
+        fwrite(image->pixels.data(), 1, image->pixels.size(), file) == image->pixels.size();
+    if (!written)
+        *error = strerror(errno);
+    return written;
+}
+
+static bool EndsWith(const std::string &s, const char *suffix) {
+    size_t n = strlen(suffix);
+    if (s.size() < n)
+        return false;
+    for (size_t k = 0; k < n; k++)
+        if (tolower((unsigned char)s[s.size() - n + k]) != suffix[k])
+            return false;
+    return true;
+}
+
+// Written to directly, never replaced: what is not a regular file (/dev/null, a FIFO), and any
+// path under /dev (/dev/stdout is a regular file when standard output is redirected to one,
+// and replacing that file would not reach the program's standard output).
+static bool IsSpecial(const std::string &path, const struct stat *info) {
+    return !S_ISREG(info->st_mode) || path.compare(0, 5, "/dev/") == 0;
+}
+
+bool CheckOutputPath(const std::string &output, const std::vector<std::string> &inputs, int *status,
+                     std::string *error) {
+    struct stat out;
+    bool exists = stat(output.c_str(), &out) == 0;
+    *status = 2;
+    if (exists && S_ISDIR(out.st_mode)) {
+        *status = 3;
+        *error = output + ": Is a directory";
+        return false;
     }
-    // mkstemp creates the file readable by its owner only; give it the usual permissions
-    if (written) {
-        mode_t mask = umask(0);
-        umask(mask);
-        chmod(temporary.c_str(), 0666 & ~mask);
+    bool special = exists && IsSpecial(output, &out);
+    if (!special && !EndsWith(output, ".png") && !EndsWith(output, ".ppm")) {
+        *error = output + ": unknown image format (the name must end in .png or .ppm)";
+        return false;
     }
-    if (written && rename(temporary.c_str(), path) != 0) {
-        *error = std::string(path) + ": " + strerror(errno);
+    for (const std::string &input : inputs) {
+        struct stat in;
+        if (exists && stat(input.c_str(), &in) == 0 && in.st_dev == out.st_dev &&
+            in.st_ino == out.st_ino) {
+            *error = output + ": is also an input of this run (" + input +
+                     "); choose another output with -o";
+            return false;
+        }
+    }
+    // A file nobody may write is refused even when the system would let us (root): it was made
+    // read-only on purpose, and replacing it would lose it
+    if (exists && !special && (access(output.c_str(), W_OK) != 0 || (out.st_mode & 0222) == 0)) {
+        *status = 3;
+        *error = output + ": Permission denied";
+        return false;
+    }
+    return true;
+}
+
+// Signals that stop a run. They are held while a temporary file exists, so that an interrupted
+// run cannot leave one behind: a signal that arrives meanwhile is delivered once the temporary
+// file is gone, and the output path is left as it was.
+static void HoldStopSignals(sigset_t *previous) {
+    sigset_t stops;
+    sigemptyset(&stops);
+    sigaddset(&stops, SIGINT);
+    sigaddset(&stops, SIGTERM);
+    sigaddset(&stops, SIGHUP);
+    pthread_sigmask(SIG_BLOCK, &stops, previous);
+}
+
+// A stop signal is waiting to be delivered. One the process ignores (a shell starts background
+// jobs with SIGINT ignored) is still reported pending while held, but stops nothing.
+static bool StopSignalPending() {
+    sigset_t pending;
+    sigpending(&pending);
+    for (int signal : {SIGINT, SIGTERM, SIGHUP}) {
+        struct sigaction action;
+        if (sigismember(&pending, signal) && sigaction(signal, nullptr, &action) == 0 &&
+            action.sa_handler != SIG_IGN)
+            return true;
+    }
+    return false;
+}
+
+static bool Encode(FILE *file, const std::string &path, const Image *image, std::string *error) {
+    bool ppm = EndsWith(path, ".ppm");
+    return ppm ? EncodePpm(file, image, error) : EncodePng(file, image, error);
+}
+
+// Writes straight into a special output (IsSpecial): it cannot be replaced, and replacing a
+// device would be wrong.
+static bool WriteSpecial(const std::string &path, const Image *image, std::string *error) {
+    FILE *file = fopen(path.c_str(), "wb");
+    std::string why;
+    bool written = file && Encode(file, path, image, &why);
+    if (!file)
+        why = strerror(errno);
+    if (file && fclose(file) != 0 && written) {
+        why = strerror(errno);
         written = false;
     }
     if (!written)
+        *error = path + ": " + why;
+    return written;
+}
+
+bool WriteImage(const char *path, const Image *image, std::string *error) {
+    struct stat info;
+    bool exists = stat(path, &info) == 0;
+    if (exists && IsSpecial(path, &info))
+        return WriteSpecial(path, image, error);
+
+    // A symbolic link is followed: the file it points to is replaced, the link stays
+    char resolved[PATH_MAX];
+    std::string target = exists && realpath(path, resolved) ? resolved : path;
+    std::string temporary = target + ".XXXXXX", why;
+    sigset_t previous;
+    HoldStopSignals(&previous);
+    int fd = mkstemp(&temporary[0]);
+    FILE *file = fd >= 0 ? fdopen(fd, "wb") : nullptr;
+    bool written = file && Encode(file, target, image, &why);
+    if (!file)
+        why = strerror(errno);
+    if (file && fclose(file) != 0 && written) { // fclose flushes: a full disk shows up here
+        why = strerror(errno);
+        written = false;
+    } else if (!file && fd >= 0) {
+        close(fd);
+    }
+    // mkstemp makes the file readable by its owner only: give it the mode the replaced file had,
+    // or the usual one
+    mode_t mask = umask(0);
+    umask(mask);
+    if (written && chmod(temporary.c_str(), exists ? info.st_mode & 07777 : 0666 & ~mask) != 0) {
+        why = strerror(errno);
+        written = false;
+    }
+    if (written && StopSignalPending()) {
+        why = "interrupted";
+        written = false;
+    }
+    if (written && rename(temporary.c_str(), target.c_str()) != 0) {
+        why = strerror(errno);
+        written = false;
+    }
+    if (!written && fd >= 0)
         unlink(temporary.c_str());
+    pthread_sigmask(SIG_SETMASK, &previous, nullptr); // a held signal is delivered here
+    if (!written)
+        *error = std::string(path) + ": " + why;
     return written;
 }
 

@@ -63,18 +63,7 @@ static std::string HitJson(const Scene *scene, const RayHit *hit) {
 
 bool ParseProbeLine(const std::string &line, Ray *ray, bool *blank, std::string *error) {
     std::vector<std::string> tokens;
-    std::string current;
-    for (char c : line.substr(0, line.find('#'))) {
-        bool space = c == ' ' || c == '\t' || c == '\r' || c == '\n';
-        if (!space)
-            current += c;
-        if (space && !current.empty()) {
-            tokens.push_back(current);
-            current.clear();
-        }
-    }
-    if (!current.empty())
-        tokens.push_back(current);
+    Tokenize(line, &tokens);
     *blank = tokens.empty();
     if (*blank)
         return true;

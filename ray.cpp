@@ -12,6 +12,8 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <new>
+#include <sys/stat.h>
 #include <thread>
 
 static const char *kVersion = "rt 0.2.0";
@@ -23,7 +25,8 @@ static const char *kUsage =
     "or the path of a scene file (see the README for the format).\n"
     "\n"
     "rendering:\n"
-    "  -o FILE                  output PNG (default: reference.png for default, test.png for\n"
+    "  -o FILE                  output image, .png or .ppm (default: reference.png for default, "
+    "test.png for\n"
     "                           test, NAME.png for a file NAME.scene)\n"
     "  --size W[xH]             image size in pixels, 1..16384 (H defaults to W)\n"
     "  --spp N                  samples per pixel, 1..65536 (default 1: the pixel centre)\n"
@@ -217,6 +220,10 @@ static bool ParseOptions(int argc, char **argv, Options *opt, std::string *error
         *error = "choose one of --ray, --rays, --pixel, --view and --compare";
         return false;
     }
+    if (!opt->output.empty() && (opt->probeRay || opt->pixel || !opt->raysFile.empty())) {
+        *error = "-o goes with a render, --view or --compare; probes print to standard output";
+        return false;
+    }
     return true;
 }
 
@@ -268,6 +275,12 @@ static double SecondsSince(std::chrono::steady_clock::time_point start) {
 static int Compare(const Options *opt) {
     Image a, b, heat;
     std::string error;
+    int status;
+    if (!opt->output.empty() &&
+        !CheckOutputPath(opt->output, {opt->compareA, opt->compareB}, &status, &error)) {
+        fprintf(stderr, "ray: %s\n", error.c_str());
+        return status;
+    }
     if (!ReadPng(opt->compareA.c_str(), &a, &error) ||
         !ReadPng(opt->compareB.c_str(), &b, &error)) {
         fprintf(stderr, "ray: %s\n", error.c_str());
@@ -281,7 +294,7 @@ static int Compare(const Options *opt) {
     printf("rmse: %.6f\npsnr: %.2f dB\nlargest difference: %d\npixels over tolerance %g: %ld of "
            "%ld\n",
            d.rmse, d.psnr, d.largest, opt->tolerance, d.pixelsOver, (long)a.width * a.height);
-    if (!opt->output.empty() && !WritePng(opt->output.c_str(), &heat, &error)) {
+    if (!opt->output.empty() && !WriteImage(opt->output.c_str(), &heat, &error)) {
         fprintf(stderr, "ray: %s\n", error.c_str());
         return 3;
     }
@@ -296,23 +309,31 @@ static int Probe(const Options *opt, const Scene *scene, const RenderSettings *s
         printf("%s\n", ProbeRayJson(scene, settings, &ray).c_str());
         return 0;
     }
-    std::ifstream file;
     bool fromStdin = opt->raysFile == "-";
-    if (!fromStdin) {
-        file.open(opt->raysFile);
-        if (!file) {
-            fprintf(stderr, "ray: %s: %s\n", opt->raysFile.c_str(), strerror(errno));
-            return 2;
-        }
+    struct stat info;
+    if (!fromStdin && stat(opt->raysFile.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+        fprintf(stderr, "ray: %s: is a directory, not a file of rays\n", opt->raysFile.c_str());
+        return 2;
     }
-    std::istream &in = fromStdin ? std::cin : file;
-    int status = 0, lineNumber = 0;
-    for (std::string line; std::getline(in, line);) {
-        lineNumber++;
+    FILE *file = fromStdin ? stdin : fopen(opt->raysFile.c_str(), "rb");
+    if (!file) {
+        fprintf(stderr, "ray: %s: %s\n", opt->raysFile.c_str(), strerror(errno));
+        return 2;
+    }
+    int status = 0;
+    std::string line, error;
+    for (int lineNumber = 1;; lineNumber++) {
+        LineStatus read = ReadTextLine(file, lineNumber, &line, &error);
+        if (read == LINE_END)
+            break;
+        if (read == LINE_BAD) { // not text: no line after this one can be trusted either
+            fprintf(stderr, "ray: %s:%d: %s\n", opt->raysFile.c_str(), lineNumber, error.c_str());
+            status = 2;
+            break;
+        }
         Ray ray;
         bool blank;
-        std::string error;
-        if (!ParseProbeLine(line, &ray, &blank, &error)) {
+        if (read == LINE_TOO_LONG || !ParseProbeLine(line, &ray, &blank, &error)) {
             printf("%s\n",
                    ProbeErrorJson("line " + std::to_string(lineNumber) + ": " + error).c_str());
             status = 2;
@@ -320,10 +341,12 @@ static int Probe(const Options *opt, const Scene *scene, const RenderSettings *s
             printf("%s\n", ProbeRayJson(scene, settings, &ray).c_str());
         }
     }
+    if (!fromStdin)
+        fclose(file);
     return status;
 }
 
-int main(int argc, char **argv) {
+static int Run(int argc, char **argv) {
     auto start = std::chrono::steady_clock::now();
     Options opt;
     std::string error;
@@ -370,6 +393,21 @@ int main(int argc, char **argv) {
         return 0;
     }
 
+    // The output is checked before the render, so a mistake in it costs no time. A debug view is
+    // written beside the image, not over it: reference_normal.png
+    if (opt.view && opt.output.empty())
+        defaultOutput = defaultOutput.substr(0, defaultOutput.size() - 4) + "_" +
+                        ViewName(opt.viewKind) + ".png";
+    std::string output = opt.output.empty() ? defaultOutput : opt.output;
+    std::vector<std::string> inputs;
+    if (opt.scene != "default" && opt.scene != "test")
+        inputs.push_back(opt.scene);
+    int status;
+    if (!CheckOutputPath(output, inputs, &status, &error)) {
+        fprintf(stderr, "ray: %s\n", error.c_str());
+        return status;
+    }
+
     Image image;
     RayStats stats = {0, 0, 0, 0, 0};
     auto renderStart = std::chrono::steady_clock::now();
@@ -379,16 +417,22 @@ int main(int argc, char **argv) {
         Render(&scene, &settings, &image, &stats);
     double renderSeconds = SecondsSince(renderStart);
 
-    // A debug view is written beside the image, not over it: reference_normal.png
-    if (opt.view && opt.output.empty())
-        defaultOutput = defaultOutput.substr(0, defaultOutput.size() - 4) + "_" +
-                        ViewName(opt.viewKind) + ".png";
-    std::string output = opt.output.empty() ? defaultOutput : opt.output;
-    if (!WritePng(output.c_str(), &image, &error)) {
+    if (!WriteImage(output.c_str(), &image, &error)) {
         fprintf(stderr, "ray: %s\n", error.c_str());
         return 3;
     }
     if (opt.stats)
         PrintStats(&stats, &settings, renderSeconds, SecondsSince(start));
     return 0;
+}
+
+// An allocation that fails (a scene of millions of shapes under a memory limit, an image of
+// 16384 x 16384 on a small machine) is an error message and exit 2, never an abort.
+int main(int argc, char **argv) {
+    try {
+        return Run(argc, argv);
+    } catch (const std::bad_alloc &) {
+        fprintf(stderr, "ray: out of memory\n");
+        return 2;
+    }
 }

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -457,12 +458,20 @@ vec2 SamplePosition(int i, int j, int s, int n);
 // Colour channel to 8 bits: round(clamp(c, 0, 1) * 255), no gamma.
 uint8_t ToByte(real c);
 
-// ---- image.cpp: PNG files and comparing images ------------------------------------------------
+// ---- image.cpp: image files and comparing images ------------------------------------------------
 
-// Writes *image to path as an 8-bit RGB PNG, through a temporary file renamed into place, so
-// the path holds either its old contents or the whole new image. Returns false and sets *error
-// on failure.
-bool WritePng(const char *path, const Image *image, std::string *error);
+// Whether `output` may be written by a run that reads `inputs`: its name ends in .png or .ppm
+// (or it is a device or FIFO), it is not one of the inputs, and if it exists, it is not a
+// directory or a file without write permission. False with the exit status (2 bad usage, 3 I/O)
+// and *error otherwise. Checked before a render, so a mistake costs no time.
+bool CheckOutputPath(const std::string &output, const std::vector<std::string> &inputs, int *status,
+                     std::string *error);
+
+// Writes *image to path as 8-bit RGB, PNG or binary PPM by the name's extension. A regular file
+// is written through a temporary file renamed into place (a symbolic link is followed), so the
+// path holds either its old contents or the whole new image, also when SIGINT or SIGTERM
+// arrives; a device or FIFO is written to directly. False with *error on failure.
+bool WriteImage(const char *path, const Image *image, std::string *error);
 
 // Reads any PNG file into *image as 8-bit RGB. Returns false and sets *error on failure.
 bool ReadPng(const char *path, Image *image, std::string *error);
@@ -483,6 +492,38 @@ color HeatColor(real x);
 bool CompareImages(const Image *a, const Image *b, int tolerance, ImageDifference *difference,
                    Image *heatmap);
 
+// ---- text.cpp: lines, tokens and numbers (scene files, probe lines, the command line) --------
+
+// The longest line a scene file or probe file may have: a statement is a keyword and at most
+// fifteen numbers, so this leaves room for any comment, and a one-line file of 250 MB is refused
+// at once instead of being held in memory.
+const size_t kMaxLineLength = 65536;
+
+enum LineStatus {
+    LINE_READ,     // *line holds the next line, without its \n or \r\n
+    LINE_END,      // no more lines
+    LINE_TOO_LONG, // the line was longer than kMaxLineLength (and has been skipped)
+    LINE_BAD       // a NUL byte (not a text file) or a read error: stop reading
+};
+
+// Reads line number `lineNumber` (from 1) of a text file, without its comment (from `#` on); on
+// line 1 a UTF-8 byte-order mark is skipped. Sets *error for LINE_TOO_LONG and LINE_BAD.
+LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::string *error);
+
+// Splits a line into tokens at spaces and tabs, up to a `#` (the rest is a comment).
+void Tokenize(const std::string &line, std::vector<std::string> *tokens);
+
+// A token as it may be shown in a message: quoted, at most 40 characters, unprintable bytes as ?.
+std::string Shown(const std::string &token);
+
+// Reads a number token: decimal digits with an optional sign, point and exponent, finite.
+// Returns false and sets *error for anything else (inf, nan, hexadecimal, trailing characters).
+bool ParseReal(const std::string &token, real *value, std::string *error);
+
+// Reads a whole number token (optional sign, decimal digits) in [lo, hi]; false with *error
+// otherwise. Shared by the scene reader and the command line.
+bool ParseWholeNumber(const std::string &token, int lo, int hi, int *value, std::string *error);
+
 // ---- scene_file.cpp: scene files (SPEC section 3) -------------------------------------------
 
 // The scene a file starts from: nothing in it, 512 x 512, `camera perspective 0 0 0 2 2`,
@@ -495,14 +536,6 @@ bool ReadSceneFile(const char *path, Scene *scene, std::string *error);
 // Reads a scene from text, naming it fileName in errors.
 bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
                     std::string *error);
-
-// Reads a number token: decimal digits with an optional sign, point and exponent, finite.
-// Returns false and sets *error for anything else (inf, nan, hexadecimal, trailing characters).
-bool ParseReal(const std::string &token, real *value, std::string *error);
-
-// Reads a whole number token (optional sign, decimal digits) in [lo, hi]; false with *error
-// otherwise. Shared by the scene reader and the command line.
-bool ParseWholeNumber(const std::string &token, int lo, int hi, int *value, std::string *error);
 
 // ---- probe.cpp: probes and ray trees (SPEC section 4) -----------------------------------------
 

@@ -11,9 +11,9 @@
 #include <cstring>
 #include <sys/stat.h>
 
-// Limits that keep a hostile or mistaken file from exhausting memory: a file is read whole, and
-// the brute-force nearest-hit loop is only sensible for scenes far smaller than this anyway.
-static const long kMaxFileBytes = 256L << 20;
+// A limit that keeps a hostile or mistaken file from exhausting memory: the brute-force
+// nearest-hit loop is only sensible for scenes far smaller than this anyway. (The file itself is
+// read a line at a time, and a line is at most kMaxLineLength long.)
 static const size_t kMaxObjects = 1000000; // shapes, lights and materials together
 
 // One statement being read, for its handler and for error messages.
@@ -40,57 +40,9 @@ void InitScene(Scene *scene) {
     scene->depth = 10;
 }
 
-// A token as it may be shown in a message: at most 40 characters, unprintable bytes as '?'.
-static std::string Shown(const std::string &token) {
-    std::string s = token.substr(0, 40);
-    for (char &c : s)
-        if ((unsigned char)c < 32 || (unsigned char)c > 126)
-            c = '?';
-    return "'" + s + (token.size() > 40 ? "...'" : "'");
-}
-
 static bool Fail(const Statement *st, const std::string &message, std::string *error) {
     *error = std::string(st->file) + ":" + std::to_string(st->line) + ": " + message;
     return false;
-}
-
-// Decimal digits with an optional sign, point and exponent: -2, +0.5, 1e-3, .5, 5.
-static bool LooksDecimal(const std::string &t) {
-    size_t k = 0, digits = 0;
-    if (k < t.size() && (t[k] == '+' || t[k] == '-'))
-        k++;
-    for (; k < t.size() && isdigit((unsigned char)t[k]); k++)
-        digits++;
-    if (k < t.size() && t[k] == '.')
-        for (k++; k < t.size() && isdigit((unsigned char)t[k]); k++)
-            digits++;
-    if (digits == 0)
-        return false;
-    if (k < t.size() && (t[k] == 'e' || t[k] == 'E')) {
-        k++;
-        if (k < t.size() && (t[k] == '+' || t[k] == '-'))
-            k++;
-        size_t start = k;
-        for (; k < t.size() && isdigit((unsigned char)t[k]); k++) {
-        }
-        if (k == start)
-            return false;
-    }
-    return k == t.size();
-}
-
-bool ParseReal(const std::string &token, real *value, std::string *error) {
-    if (!LooksDecimal(token)) {
-        *error = "not a decimal number: " + Shown(token);
-        return false;
-    }
-    double v = strtod(token.c_str(), nullptr);
-    if (!std::isfinite(v) || !std::isfinite((real)v)) {
-        *error = "number out of range: " + Shown(token);
-        return false;
-    }
-    *value = (real)v;
-    return true;
 }
 
 // Reads `count` numbers from tokens[first...]; the statement must hold exactly `total` tokens.
@@ -109,23 +61,6 @@ static bool Numbers(const Statement *st, size_t first, int count, size_t total, 
         if (!ParseReal(st->tokens[first + k], &out[k], &why))
             return Fail(st, keyword + ": " + why, error);
     }
-    return true;
-}
-
-bool ParseWholeNumber(const std::string &token, int lo, int hi, int *value, std::string *error) {
-    size_t k = !token.empty() && (token[0] == '+' || token[0] == '-') ? 1 : 0;
-    bool digits = k < token.size() && token.find_first_not_of("0123456789", k) == std::string::npos;
-    if (!digits) {
-        *error = "not a whole number: " + Shown(token);
-        return false;
-    }
-    long v = token.size() < 12 ? strtol(token.c_str(), nullptr, 10) : lo - 1L; // 12 digits: too big
-    if (v < lo || v > hi) {
-        *error = "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + ", not " +
-                 Shown(token);
-        return false;
-    }
-    *value = (int)v;
     return true;
 }
 
@@ -368,37 +303,19 @@ static bool ReadStatement(const Statement *st, Scene *scene, Declared *declared,
     return Fail(st, "unknown keyword " + Shown(k), error);
 }
 
-// Splits a line into tokens at spaces and tabs, up to a `#`.
-static void Tokenize(const std::string &line, std::vector<std::string> *tokens) {
-    tokens->clear();
-    size_t k = 0, end = line.find('#');
-    if (end == std::string::npos)
-        end = line.size();
-    while (k < end) {
-        while (k < end && (line[k] == ' ' || line[k] == '\t'))
-            k++;
-        size_t start = k;
-        while (k < end && line[k] != ' ' && line[k] != '\t')
-            k++;
-        if (k > start)
-            tokens->push_back(line.substr(start, k - start));
-    }
-}
-
-bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
-                    std::string *error) {
+// Reads statements a line at a time from `file` (never the whole file at once).
+static bool ParseSceneLines(FILE *file, const char *fileName, Scene *scene, std::string *error) {
     InitScene(scene);
     Declared declared = {};
     Statement st = {fileName, 0, {}};
-    for (size_t start = 0; start < text.size();) {
-        size_t end = text.find('\n', start);
-        if (end == std::string::npos)
-            end = text.size();
-        std::string line = text.substr(start, end - start);
-        if (!line.empty() && line.back() == '\r') // Windows line endings
-            line.pop_back();
-        start = end + 1;
+    std::string line, why;
+    for (;;) {
         st.line++;
+        LineStatus status = ReadTextLine(file, st.line, &line, &why);
+        if (status == LINE_END)
+            break;
+        if (status != LINE_READ)
+            return Fail(&st, why, error);
         Tokenize(line, &st.tokens);
         if (st.tokens.empty())
             continue;
@@ -416,15 +333,28 @@ bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
     return true;
 }
 
+bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
+                    std::string *error) {
+    static const char kNothing[] = "\n"; // fmemopen needs at least one byte
+    FILE *file = text.empty() ? fmemopen((void *)kNothing, 1, "r")
+                              : fmemopen((void *)text.data(), text.size(), "r");
+    if (!file) {
+        *error = std::string(fileName) + ": " + strerror(errno);
+        return false;
+    }
+    bool read = ParseSceneLines(file, fileName, scene, error);
+    fclose(file);
+    return read;
+}
+
 bool ReadSceneFile(const char *path, Scene *scene, std::string *error) {
     struct stat info;
     if (stat(path, &info) != 0) {
         *error = std::string(path) + ": " + strerror(errno);
         return false;
     }
-    if (!S_ISREG(info.st_mode) || info.st_size > kMaxFileBytes) {
-        *error = std::string(path) +
-                 (S_ISREG(info.st_mode) ? ": larger than 256 MiB" : ": not a regular file");
+    if (S_ISDIR(info.st_mode)) {
+        *error = std::string(path) + ": is a directory, not a scene file";
         return false;
     }
     FILE *file = fopen(path, "rb");
@@ -432,14 +362,7 @@ bool ReadSceneFile(const char *path, Scene *scene, std::string *error) {
         *error = std::string(path) + ": " + strerror(errno);
         return false;
     }
-    std::string text((size_t)info.st_size, '\0');
-    size_t got = fread(&text[0], 1, text.size(), file);
-    bool failed = ferror(file) != 0;
+    bool read = ParseSceneLines(file, path, scene, error);
     fclose(file);
-    if (failed) {
-        *error = std::string(path) + ": read error";
-        return false;
-    }
-    text.resize(got);
-    return ParseSceneText(text, path, scene, error);
+    return read;
 }

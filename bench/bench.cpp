@@ -96,7 +96,7 @@ static void WriteHeatMap(const char *path, const Image *image, const Image *refe
         heat.pixels[k + 2] = ToByte(h.z);
     }
     std::string error;
-    WritePng(path, &heat, &error);
+    WriteImage(path, &heat, &error);
 }
 
 static void PrintRow(const BenchScene &b, const char *knob, const std::string &setting, int spp,
@@ -136,7 +136,7 @@ static bool BaseImage(const std::string &dir, const BenchScene &b, const Scene *
     RenderSettings s = Settings(b, 1, SAMPLES_GRID);
     RayStats stats = {0, 0, 0, 0, 0};
     Render(scene, &s, base, &stats);
-    return WritePng(path.c_str(), base, &error);
+    return WriteImage(path.c_str(), base, &error);
 }
 
 static bool Reference(const std::string &dir, const BenchScene &b, const Scene *scene,
@@ -148,7 +148,7 @@ static bool Reference(const std::string &dir, const BenchScene &b, const Scene *
     RayStats stats = {0, 0, 0, 0, 0};
     fprintf(stderr, "bench: %-10s reference, %d spp grid, double...\n", b.name, kReferenceSpp);
     Render(scene, &s, reference, &stats);
-    return WritePng(path.c_str(), reference, &error);
+    return WriteImage(path.c_str(), reference, &error);
 }
 
 static void SceneRows(const std::string &dir, const BenchScene &b) {
@@ -242,7 +242,7 @@ static int PngFloor(const char *rgb, const char *png) {
         return 2;
     fclose(in);
     std::string error;
-    return WritePng(png, &image, &error) ? 0 : 3;
+    return WriteImage(png, &image, &error) ? 0 : 3;
 }
 
 static int TimeProcess(char **command) {

@@ -48,6 +48,13 @@ double ShareAlike(const Image &a, const Image &b);
 // The program under test for command-line checks: $RAY, or ./ray (./ray_float in the float build).
 std::string RayProgram();
 
+// A whole file's bytes ("" if it cannot be read).
+std::string ReadFile(const std::string &path);
+
+// Runs `RayProgram() ARGS` in directory dir, standard output to dir/out.txt, standard error
+// returned in *stderrText; returns the exit status (-1 if it did not exit normally).
+int RunRay(const std::string &dir, const std::string &args, std::string *stderrText);
+
 // The test groups, one per file.
 void TestGeometry();
 void TestTriangles();
@@ -63,5 +70,6 @@ void TestHardCases();
 void TestStability();
 void TestLongTriangles();
 void TestRanges();
+void TestFiles();
 
 #endif

@@ -72,6 +72,7 @@ int main() {
     TestStability();
     TestLongTriangles();
     TestRanges();
+    TestFiles();
     TestSceneFiles();
     TestProbes();
     TestProgram();

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <sys/wait.h>
 
-static std::string ReadFile(const std::string &path) {
+std::string ReadFile(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
     std::stringstream s;
     s << in.rdbuf();
@@ -22,7 +22,7 @@ static std::string ReadFile(const std::string &path) {
 static bool FileExists(const std::string &path) { return std::ifstream(path).good(); }
 
 // Runs `ray ARGS` in dir with stderr captured; returns the exit status.
-static int RunRay(const std::string &dir, const std::string &args, std::string *stderrText) {
+int RunRay(const std::string &dir, const std::string &args, std::string *stderrText) {
     std::string program = RayProgram();
     if (program[0] != '/') {
         char *cwd = realpath(".", nullptr);
@@ -169,9 +169,9 @@ static void TestSceneFilesInProgram(const std::string &dir) {
         numbers += " 1.5";
     std::ofstream(dir + "/numbers.scene") << "ambient" << numbers << "\n";
     CHECK(RunRay(dir, "numbers.scene", &err) == 2 &&
-              err.find("numbers.scene:1: ambient: extra value") != std::string::npos,
+              err == "ray: numbers.scene:1: line longer than 65536 characters\n",
           "a 1 MB line of numbers: one error line (got " + err.substr(0, 80) + ")");
-    CHECK(RunRay(dir, "/tmp", &err) == 2 && err.find("not a regular file") != std::string::npos,
+    CHECK(RunRay(dir, "/tmp", &err) == 2 && err.find("is a directory") != std::string::npos,
           "a directory as the scene: exit 2");
     CHECK(RunRay(dir, "missing.scene", &err) == 2 &&
               err == "ray: missing.scene: No such file or directory\n",

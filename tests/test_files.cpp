@@ -1,0 +1,198 @@
+// tests/test_files.cpp -- files are never lost by mistake, and no input hurts the program.
+//
+// The ordinary slips of a new user: an output named like an input, a read-only image, a device
+// or a FIFO or a symbolic link as the output, Ctrl-C during the write, a directory or /dev/zero
+// given as a file of rays, a one-line file of many megabytes, a byte-order mark from Notepad.
+// Each runs the program (RayProgram) in a fresh temporary directory.
+#include "test.h"
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <dirent.h>
+#include <fstream>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+static void Write(const std::string &path, const std::string &text) {
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+static const char *kSmallScene = "size 16 16\nmaterial red diffuse 1 0 0\nlight 0 4 0\n"
+                                 "sphere 0 0 -3 1 red\n";
+
+// No temporary file (NAME.png.XXXXXX or NAME.ppm.XXXXXX) left in dir.
+static bool NoTemporaryFiles(const std::string &dir) {
+    DIR *folder = opendir(dir.c_str());
+    int temporary = 0;
+    while (dirent *entry = folder ? readdir(folder) : nullptr) {
+        std::string name = entry->d_name;
+        temporary +=
+            name.find(".png.") != std::string::npos || name.find(".ppm.") != std::string::npos;
+    }
+    if (folder)
+        closedir(folder);
+    return folder && temporary == 0;
+}
+
+// The program under test as an absolute path, for a child that changes its directory.
+static std::string AbsoluteRayProgram() {
+    std::string program = RayProgram();
+    char *cwd = program[0] == '/' ? nullptr : realpath(".", nullptr);
+    if (cwd)
+        program = std::string(cwd) + "/" + program;
+    free(cwd);
+    return program;
+}
+
+// An output that is also an input of the same run is refused, and the input left untouched.
+static void TestOutputIsAnInput(const std::string &dir) {
+    Write(dir + "/my.scene", kSmallScene);
+    Write(dir + "/scene.png", kSmallScene); // a scene file with an image's name
+    std::string err;
+    CHECK(RunRay(dir, "my.scene -o my.scene", &err) == 2 &&
+              ReadFile(dir + "/my.scene") == kSmallScene,
+          "`ray my.scene -o my.scene`: exit 2, the scene file untouched (" + err + ")");
+    CHECK(RunRay(dir, "scene.png -o scene.png", &err) == 2 &&
+              err.find("is also an input") != std::string::npos &&
+              ReadFile(dir + "/scene.png") == kSmallScene,
+          "a scene file named scene.png as its own output: exit 2, untouched (" + err + ")");
+    RunRay(dir, "my.scene -o a.png", &err);
+    RunRay(dir, "my.scene --size 8 -o b.png", &err);
+    std::string before = ReadFile(dir + "/b.png");
+    CHECK(RunRay(dir, "--compare a.png b.png -o b.png", &err) == 2 &&
+              ReadFile(dir + "/b.png") == before,
+          "`--compare a.png b.png -o b.png`: exit 2, the image compared against untouched");
+}
+
+// A file nobody may write is refused with exit 3 and kept, even when the system would allow
+// it (as root); an existing writable file is replaced and keeps its permissions.
+static void TestReadOnlyOutput(const std::string &dir) {
+    std::string err, path = dir + "/kept.png";
+    Write(path, "not yet an image");
+    chmod(path.c_str(), 0444);
+    CHECK(RunRay(dir, "my.scene -o kept.png", &err) == 3 &&
+              err.find("Permission denied") != std::string::npos &&
+              ReadFile(path) == "not yet an image",
+          "a read-only output: exit 3, `Permission denied`, the file untouched (" + err + ")");
+    chmod(path.c_str(), 0640);
+    struct stat info;
+    CHECK(RunRay(dir, "my.scene -o kept.png", &err) == 0 && stat(path.c_str(), &info) == 0 &&
+              (info.st_mode & 0777) == 0640,
+          "a writable output is replaced and keeps its mode 0640");
+}
+
+// Devices and FIFOs are written to, never replaced; a symbolic link is followed.
+static void TestSpecialOutputs(const std::string &dir) {
+    std::string err;
+    struct stat info;
+    CHECK(RunRay(dir, "my.scene -o /dev/null", &err) == 0 && stat("/dev/null", &info) == 0 &&
+              S_ISCHR(info.st_mode),
+          "`-o /dev/null` writes into the device and leaves it a device");
+    CHECK(RunRay(dir, "my.scene -o /dev/stdout", &err) == 0 &&
+              ReadFile(dir + "/out.txt").compare(1, 3, "PNG") == 0,
+          "`-o /dev/stdout` writes the PNG to standard output");
+    std::string fifo = dir + "/pipe";
+    mkfifo(fifo.c_str(), 0600);
+    std::string command = "cat '" + fifo + "' > '" + dir + "/from-pipe.png' &";
+    int ignored = system(command.c_str());
+    (void)ignored;
+    RunRay(dir, "my.scene -o plain.png", &err);
+    CHECK(RunRay(dir, "my.scene -o pipe", &err) == 0 && stat(fifo.c_str(), &info) == 0 &&
+              S_ISFIFO(info.st_mode),
+          "a FIFO as the output is written to and stays a FIFO");
+    for (int k = 0; k < 50 && ReadFile(dir + "/from-pipe.png") != ReadFile(dir + "/plain.png"); k++)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    CHECK(ReadFile(dir + "/from-pipe.png") == ReadFile(dir + "/plain.png"),
+          "what came through the FIFO is the image");
+    Write(dir + "/real.png", "old");
+    int linked = symlink("real.png", (dir + "/link.png").c_str());
+    CHECK(linked == 0 && RunRay(dir, "my.scene -o link.png", &err) == 0 &&
+              lstat((dir + "/link.png").c_str(), &info) == 0 && S_ISLNK(info.st_mode) &&
+              ReadFile(dir + "/real.png") == ReadFile(dir + "/plain.png"),
+          "a symbolic link as the output: the file it points to is replaced, the link stays");
+    CHECK(RunRay(dir, "my.scene -o x.jpg", &err) == 2 && RunRay(dir, "my.scene -o x", &err) == 2,
+          "an output named neither .png nor .ppm: exit 2");
+    CHECK(RunRay(dir, "my.scene -o x.ppm", &err) == 0 &&
+              ReadFile(dir + "/x.ppm").compare(0, 13, "P6\n16 16\n255\n") == 0 &&
+              ReadFile(dir + "/x.ppm").size() == 13 + 16 * 16 * 3,
+          "`-o x.ppm` writes a binary PPM: the P6 header, then 16 x 16 x 3 bytes");
+    CHECK(NoTemporaryFiles(dir), "no temporary file is left behind");
+}
+
+// SIGINT at moments spread over a run that writes a large image (before, during and after the
+// write): no temporary file remains, and the output is either as it was (and the run did not
+// succeed) or the complete new image.
+static void TestInterruptedWrites(const std::string &dir) {
+    Write(dir + "/wide.scene", "size 2500 2500\nbackground 0.2 0.4 0.6\n");
+    std::string err;
+    auto start = std::chrono::steady_clock::now();
+    RunRay(dir, "wide.scene -o whole.ppm", &err);
+    double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::string whole = ReadFile(dir + "/whole.ppm"), program = AbsoluteRayProgram();
+    int kept = 0, completed = 0, broken = 0;
+    for (double share : {0.3, 0.6, 0.8, 0.85, 0.9, 0.95, 1.0, 1.1}) {
+        Write(dir + "/target.ppm", "the old file");
+        pid_t child = fork();
+        if (child == 0) {
+            signal(SIGINT, SIG_DFL); // as at a terminal, whatever the test runner was started with
+            if (chdir(dir.c_str()) == 0)
+                execl(program.c_str(), "ray", "wide.scene", "-o", "target.ppm", (char *)nullptr);
+            _exit(127);
+        }
+        std::this_thread::sleep_for(std::chrono::duration<double>(share * seconds));
+        kill(child, SIGINT);
+        int status;
+        waitpid(child, &status, 0);
+        std::string now = ReadFile(dir + "/target.ppm");
+        bool finished = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+        kept += now == "the old file" && !finished;
+        completed += now == whole; // a signal after the rename stops a run whose file is complete
+        broken += (now != "the old file" || finished) && now != whole;
+    }
+    CHECK(broken == 0 && kept + completed == 8 && NoTemporaryFiles(dir),
+          "8 runs stopped by SIGINT at 30%..110% of their time: " + std::to_string(kept) +
+              " left the old file, " + std::to_string(completed) +
+              " wrote the whole image first, none left a broken file or a temporary one");
+}
+
+// Inputs that are not what they should be: exit 2 with a message, never a hang or an abort.
+static void TestOddInputs(const std::string &dir) {
+    std::string err;
+    CHECK(RunRay(dir, "my.scene --rays /tmp", &err) == 2 &&
+              err.find("is a directory") != std::string::npos,
+          "`--rays DIRECTORY`: exit 2 (" + err + ")");
+    CHECK(RunRay(dir, "my.scene --rays /dev/zero", &err) == 2 &&
+              err.find("not a text file") != std::string::npos,
+          "`--rays /dev/zero`: exit 2 at its first NUL byte (" + err + ")");
+    Write(dir + "/bom.scene", std::string("\xEF\xBB\xBF") + kSmallScene);
+    CHECK(RunRay(dir, "bom.scene -o bom.png", &err) == 0,
+          "a scene file that starts with a UTF-8 byte-order mark reads (" + err + ")");
+    // 40 MB on one line: refused as a long line, never held in memory whole
+    std::string line(40 << 20, '1');
+    Write(dir + "/huge.scene", "ambient " + line + "\n");
+    int status = RunRay(dir, "huge.scene -o huge.png", &err);
+    CHECK(status == 2 && err.find("huge.scene:1: line longer than") != std::string::npos,
+          "a 40 MB one-line scene file: exit 2, `line longer than` (" + err.substr(0, 80) + ")");
+    unlink((dir + "/huge.scene").c_str());
+}
+
+void TestFiles() {
+    char pattern[] = "/tmp/rt-files-XXXXXX";
+    const char *dir = mkdtemp(pattern);
+    CHECK(dir != nullptr, "a temporary directory for the file tests");
+    if (!dir)
+        return;
+    TestOutputIsAnInput(dir);
+    TestReadOnlyOutput(dir);
+    TestSpecialOutputs(dir);
+    TestInterruptedWrites(dir);
+    TestOddInputs(dir);
+    std::string command = "rm -rf '" + std::string(dir) + "'";
+    int ignored = system(command.c_str());
+    (void)ignored;
+}

@@ -1,0 +1,126 @@
+// text.cpp -- reading text input: lines, tokens and numbers, for scene files and probes alike.
+//
+// Input is read a line at a time and never held whole, so a file of any size costs memory only
+// for what it describes. A line is bounded (kMaxLineLength; a comment, from `#` on, is dropped as
+// it is read and may hold anything), a NUL byte elsewhere marks a file that is not text, and a
+// UTF-8 byte-order mark (what Windows Notepad writes) at the start is skipped.
+#include "ray.h"
+
+#include <cctype>
+#include <cstdlib>
+
+LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::string *error) {
+    line->clear();
+    int c;
+    bool tooLong = false, comment = false;
+    while ((c = getc(file)) != EOF && c != '\n') {
+        comment = comment || c == '#'; // a comment is dropped as it is read: any length will do
+        if (comment && c != '\r')
+            continue;
+        if (c == 0) {
+            *error = "a NUL byte: this is not a text file";
+            return LINE_BAD;
+        }
+        if (line->size() < kMaxLineLength)
+            *line += (char)c;
+        else
+            tooLong = true; // read on to the end of the line, keeping nothing
+    }
+    if (ferror(file)) {
+        *error = "read error";
+        return LINE_BAD;
+    }
+    if (c == EOF && line->empty() && !tooLong)
+        return LINE_END;
+    if (!line->empty() && line->back() == '\r') // Windows line endings
+        line->pop_back();
+    if (lineNumber == 1 && line->compare(0, 3, "\xEF\xBB\xBF") == 0)
+        line->erase(0, 3);
+    if (tooLong) {
+        *error = "line longer than " + std::to_string(kMaxLineLength) + " characters";
+        return LINE_TOO_LONG;
+    }
+    return LINE_READ;
+}
+
+// Splits a line into tokens at spaces and tabs, up to a `#`.
+void Tokenize(const std::string &line, std::vector<std::string> *tokens) {
+    tokens->clear();
+    size_t k = 0, end = line.find('#');
+    if (end == std::string::npos)
+        end = line.size();
+    while (k < end) {
+        while (k < end && (line[k] == ' ' || line[k] == '\t'))
+            k++;
+        size_t start = k;
+        while (k < end && line[k] != ' ' && line[k] != '\t')
+            k++;
+        if (k > start)
+            tokens->push_back(line.substr(start, k - start));
+    }
+}
+
+// A token as it may be shown in a message: at most 40 characters, unprintable bytes as '?'.
+std::string Shown(const std::string &token) {
+    std::string s = token.substr(0, 40);
+    for (char &c : s)
+        if ((unsigned char)c < 32 || (unsigned char)c > 126)
+            c = '?';
+    return "'" + s + (token.size() > 40 ? "...'" : "'");
+}
+
+// Decimal digits with an optional sign, point and exponent: -2, +0.5, 1e-3, .5, 5.
+static bool LooksDecimal(const std::string &t) {
+    size_t k = 0, digits = 0;
+    if (k < t.size() && (t[k] == '+' || t[k] == '-'))
+        k++;
+    for (; k < t.size() && isdigit((unsigned char)t[k]); k++)
+        digits++;
+    if (k < t.size() && t[k] == '.')
+        for (k++; k < t.size() && isdigit((unsigned char)t[k]); k++)
+            digits++;
+    if (digits == 0)
+        return false;
+    if (k < t.size() && (t[k] == 'e' || t[k] == 'E')) {
+        k++;
+        if (k < t.size() && (t[k] == '+' || t[k] == '-'))
+            k++;
+        size_t start = k;
+        for (; k < t.size() && isdigit((unsigned char)t[k]); k++) {
+        }
+        if (k == start)
+            return false;
+    }
+    return k == t.size();
+}
+
+bool ParseReal(const std::string &token, real *value, std::string *error) {
+    if (!LooksDecimal(token)) {
+        *error = "not a decimal number: " + Shown(token);
+        return false;
+    }
+    double v = strtod(token.c_str(), nullptr);
+    if (!std::isfinite(v) || !std::isfinite((real)v)) {
+        *error = "number out of range: " + Shown(token);
+        return false;
+    }
+    *value = (real)v;
+    return true;
+}
+
+bool ParseWholeNumber(const std::string &token, int lo, int hi, int *value, std::string *error) {
+    size_t k = !token.empty() && (token[0] == '+' || token[0] == '-') ? 1 : 0;
+    bool digits = k < token.size() && token.find_first_not_of("0123456789", k) == std::string::npos;
+    if (!digits) {
+        *error = "not a whole number: " + Shown(token);
+        return false;
+    }
+    long v = token.size() < 12 ? strtol(token.c_str(), nullptr, 10) : lo - 1L; // 12 digits: too big
+    if (v < lo || v > hi) {
+        *error = "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + ", not " +
+                 Shown(token);
+        return false;
+    }
+    *value = (int)v;
+    return true;
+}
