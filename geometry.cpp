@@ -187,18 +187,12 @@ static bool SetTriangleHit(const Triangle *tri, const Ray *ray, real t, real b0,
     return true;
 }
 
-// The largest of three finite numbers (std::fmax is a library call that also handles NaN).
-static inline real Max3(real a, real b, real c) {
-    real m = a > b ? a : b;
-    return m > c ? m : c;
-}
-
 // The per-ray half of the watertight test, shared by every triangle the ray meets: the ray in
 // the renamed axes (see RenameAxes) and the shear that turns it into the +z axis.
 struct RayShear {
     int kz;          // the axis renamed z: the largest |d| component
     vec3 origin;     // the ray origin, axes renamed
-    real sx, sy, sz; // d[kx]/d[kz], d[ky]/d[kz] and 1/d[kz]
+    real sx, sy;     // d[kx]/d[kz] and d[ky]/d[kz]
 };
 
 // v with its axes renamed (kx, ky, kz) = (kz + 1, kz + 2, kz) mod 3. A rotation keeps the
@@ -216,11 +210,11 @@ template <int kz> static inline vec3 RenameAxes(vec3 v) {
 // The per-ray half of the watertight test (Woop, Benthin & Wald 2013, §3): kz is the largest
 // |d| component, and the shear turns the ray into the +z axis. It depends on the ray only, so
 // the shape loop computes it once for all the triangles. (The paper also swaps kx and ky when
-// d[kz] < 0, to keep the winding for back-face culling. That negates u, v, w and det together
-// and changes neither t nor the barycentrics, so a two-sided test leaves it out.)
+// d[kz] < 0, to keep the winding for back-face culling. That negates u, v and w together, which
+// changes nothing for a two-sided test, so it is left out.)
 template <int kz> static void ShearRayAxes(const Ray *ray, RayShear *shear) {
     vec3 d = RenameAxes<kz>(ray->dir);
-    *shear = {kz, RenameAxes<kz>(ray->origin), d.x / d.z, d.y / d.z, 1 / d.z};
+    *shear = {kz, RenameAxes<kz>(ray->origin), d.x / d.z, d.y / d.z};
 }
 
 static void ShearRay(const Ray *ray, RayShear *shear) {
