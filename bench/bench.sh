@@ -111,6 +111,15 @@ bench "effects gallery, glass made matte" ./ray "$out/effects_no_glass.scene"
 bench "effects gallery, specular removed" ./ray "$out/effects_no_specular.scene"
 bench "effects gallery, mirror keywords removed" ./ray "$out/effects_no_mirrors.scene"
 
+# Where the robustness claims hold (docs/robustness.md publishes a copy of these tables)
+mkdir -p build/bench
+{
+    build/double/rtbench robustness
+    build/float/rtbench robustness
+} >build/bench/robustness.md
+echo
+echo "## Robustness: build/bench/robustness.md"
+
 # What accuracy costs in time: bench/results.csv, results.md, accuracy_vs_time.svg, heat maps
 echo "scene,knob,setting,spp,seconds,rays,rmse,psnr,off1,off8" >"$out/results.csv"
 build/double/rtbench rows bench >>"$out/results.csv"

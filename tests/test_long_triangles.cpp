@@ -5,62 +5,17 @@
 // t from the plane (plane.cpp). Every check below runs in double and in float, each over the
 // lengths that precision holds (docs/robustness.md has the measured table), axis-aligned and
 // rotated (corners rounded after an exact rotation, so the walls are no longer on the grid).
+#include "robust_scenes.h"
 #include "test.h"
 
 #include <cstdio>
 
 static const bool kDouble = sizeof(real) == sizeof(double);
 
-// p turned by 0.7 radians about the axis (1, 2, 3), computed in long double and rounded once.
-static vec3 Turn(vec3 p, bool turn) {
-    if (!turn)
-        return p;
-    long double n = sqrtl(14.0L), ax = 1 / n, ay = 2 / n, az = 3 / n;
-    long double c = cosl(0.7L), s = sinl(0.7L), k = 1 - c, x = p.x, y = p.y, z = p.z;
-    return {
-        (real)((k * ax * ax + c) * x + (k * ax * ay - s * az) * y + (k * ax * az + s * ay) * z),
-        (real)((k * ax * ay + s * az) * x + (k * ay * ay + c) * y + (k * ay * az - s * ax) * z),
-        (real)((k * ax * az - s * ay) * x + (k * ay * az + s * ax) * y + (k * az * az + c) * z)};
-}
-
-static Scene Empty() {
-    Scene s;
-    InitScene(&s);
-    s.materials.push_back(Matte("wall", {1, 1, 1}));
-    return s;
-}
-
-// A closed box [-2, 2] x [-1.5, 1.5] x [-L/2, L/2] of 12 triangles, two per face, faces in
-// order (triangles 2f and 2f + 1 make face f).
-static Scene Box(double length, bool turn) {
-    Scene s = Empty();
-    const real X[2] = {-2, 2}, Y[2] = {real(-1.5), real(1.5)};
-    const real Z[2] = {(real)(-length / 2), (real)(length / 2)};
-    const int faces[6][4][3] = {
-        {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},
-        {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}},
-        {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
-    for (const auto &f : faces) {
-        vec3 v[4];
-        for (int k = 0; k < 4; k++)
-            v[k] = Turn({X[f[k][0]], Y[f[k][1]], Z[f[k][2]]}, turn);
-        s.triangles.push_back({v[0], v[1], v[2], 0});
-        s.triangles.push_back({v[0], v[2], v[3], 0});
-    }
-    return s;
-}
-
-// A uniformly random unit direction.
-static vec3 RandomDirection(TestRng *rng) {
-    real z = 2 * Uniform(rng) - 1, phi = real(6.283185307179586) * Uniform(rng);
-    real r = std::sqrt(std::max(real(0), 1 - z * z));
-    return {r * std::cos(phi), r * std::sin(phi), z};
-}
-
 // The issue's own ray: from (1, 1.5, 0) down and along the box, the floor at t = 1.5 exactly.
 static void TestCorridorFloor() {
     double length = kDouble ? 1e8 : 1e3;
-    Scene box = Box(length, false);
+    Scene box = BoxScene(length, false);
     Ray ray = {{1, real(1.5), 0}, {0, -1, 1}};
     RayHit hit;
     bool found = FindNearestHit(&box, kRobustMethods, &ray, 0, kInfinity, &hit);
@@ -82,12 +37,12 @@ static void TestClosedBoxesHoldEveryRay() {
     for (int turn = 0; turn < 2; turn++) {
         for (int k = 0; k < 4; k++) {
             double length = kDouble ? lengths[k] : floatLengths[k];
-            Scene box = Box(length, turn);
+            Scene box = BoxScene(length, turn);
             int escapes = 0, reflectedEscapes = 0, reHits = 0;
             for (int i = 0; i < 500; i++) {
                 vec3 o = {-2 + 4 * Uniform(&rng), real(-1.5) + 3 * Uniform(&rng),
                           (real)((Uniform(&rng) - 0.5) * length)};
-                Ray ray = {Turn(o, turn), Turn(RandomDirection(&rng), turn)};
+                Ray ray = {Turn(o, turn), Turn(UnitDirection(Uniform(&rng), Uniform(&rng)), turn)};
                 RayHit hit, next;
                 if (!FindNearestHit(&box, kRobustMethods, &ray, 0, kInfinity, &hit)) {
                     escapes++;
@@ -142,10 +97,9 @@ static void TestBigFloors() {
     for (int turn = 0; turn < 2; turn++) {
         for (int k = 0; k < 3; k++) {
             real half = (real)(kDouble ? sizes[k] : floatSizes[k]);
-            Scene s = Empty();
-            vec3 a = Turn({-half, 0, -half}, turn), b = Turn({half, 0, -half}, turn);
-            vec3 c = Turn({half, 0, half}, turn), d = Turn({-half, 0, half}, turn);
-            s.triangles = {{a, c, b, 0}, {a, d, c, 0}};
+            vec3 corner[4];
+            Scene s = FloorScene(half, turn, corner);
+            vec3 a = corner[0], b = corner[1], c = corner[2];
             // t is within a few u of itself, plus a few u^2 (of double: both tiers compute in
             // double) of the floor's size over the height, 1e-4 at least (the double-double
             // tier, for a ray that starts 1e-4 above a floor 1e15 wide); the reference within
@@ -189,7 +143,7 @@ static void TestSlivers() {
             for (int cap = 0; cap < 2; cap++) {
                 real length = (real)(kDouble ? aspects[k] : floatAspects[k]);
                 vec3 apex = cap ? vec3{length / 2, 0, 1} : vec3{0, 0, 1};
-                Scene s = Empty();
+                Scene s = WallScene();
                 s.triangles = {
                     {Turn({0, 0, 0}, turn), Turn({length, 0, 0}, turn), Turn(apex, turn), 0}};
                 int misses = 0;
@@ -216,14 +170,14 @@ static void TestSlivers() {
 // leaving the ball's lower half downward meets the floor (the ball reflects floor, not sky).
 static void TestBallOnBigFloor() {
     real half = kDouble ? real(1e12) : real(1e4), r = real(0.01);
-    Scene s = Empty();
+    Scene s = WallScene();
     s.triangles = {{{-half, 0, -half}, {half, 0, half}, {half, 0, -half}, 0},
                    {{-half, 0, -half}, {-half, 0, half}, {half, 0, half}, 0}};
     Sphere ball = {{0, r, 0}, r, 0};
     TestRng rng = {11};
     int lost = 0;
     for (int i = 0; i < 400; i++) {
-        vec3 d = RandomDirection(&rng);
+        vec3 d = UnitDirection(Uniform(&rng), Uniform(&rng));
         if (d.y > 0)
             d.y = -d.y;
         // a point on the ball's lower half, hit from inside along -d... found by a probe from the

@@ -5,50 +5,12 @@
 // scene scaled from 1e-300 to 1e300 (float: 1e-37 to 1e36) with each of the three cameras, and
 // glass of index 1 at grazing incidence. Each runs in double and in float, over that precision's
 // range.
+#include "robust_scenes.h"
 #include "test.h"
 
 #include <cstdio>
 
 static const bool kDouble = sizeof(real) == sizeof(double);
-
-// The assignment scene as scene-file text at 64 x 64, every length times `scale`, moved by
-// `shift` along (1, -1, 1), seen by a camera of the given kind; `glass` makes the big sphere glass.
-static std::string AssignmentText(double scale, double shift, const char *camera, bool glass) {
-    auto p = [&](double x, double y, double z) {
-        char t[96];
-        snprintf(t, sizeof t, "%.17g %.17g %.17g", x * scale + shift, y * scale - shift,
-                 z * scale + shift);
-        return std::string(t);
-    };
-    char number[64];
-    std::string s = "size 64 64\nmaterial mirror mirror 1\nmaterial red diffuse 1 0 0\n"
-                    "material blue diffuse 0 0 1\nmaterial white diffuse 1 1 1\n"
-                    "material glass glass 1.5\n";
-    if (std::string(camera) == "lookat") {
-        snprintf(number, sizeof number, "%.17g", 2 * std::atan(0.5) * 180 / 3.14159265358979323846);
-        s += "camera lookat " + p(0, 0, 0) + " " + p(0, 0, -1) + " 0 1 0 " + number + "\n";
-    } else if (std::string(camera) == "screen") {
-        snprintf(number, sizeof number, "%.17g 0 0 0 %.17g 0", 2 * scale, 2 * scale);
-        s += "camera screen " + p(0, 0, 0) + " " + p(-1, -1, -2) + " " + number + "\n";
-    } else {
-        snprintf(number, sizeof number, "%.17g %.17g", 2 * scale, 2 * scale);
-        s += "camera perspective " + p(0, 0, 0) + " " + number + "\n";
-    }
-    auto radius = [&](double r) {
-        snprintf(number, sizeof number, "%.17g", r * scale);
-        return std::string(number);
-    };
-    s += "light " + p(3, 5, -15) + "\n";
-    s += "sphere " + p(0, 0, -16) + " " + radius(2) + (glass ? " glass\n" : " mirror\n");
-    s += "sphere " + p(3, -1, -14) + " " + radius(1) + " mirror\n";
-    s += "sphere " + p(-3, -1, -14) + " " + radius(1) + " red\n";
-    s += "triangle " + p(-8, -2, -20) + " " + p(8, -2, -20) + " " + p(8, 10, -20) + " blue\n";
-    s += "triangle " + p(-8, -2, -20) + " " + p(8, 10, -20) + " " + p(-8, 10, -20) + " blue\n";
-    s += "triangle " + p(-8, -2, -20) + " " + p(8, -2, -10) + " " + p(8, -2, -20) + " white\n";
-    s += "triangle " + p(-8, -2, -20) + " " + p(-8, -2, -10) + " " + p(8, -2, -10) + " white\n";
-    s += "triangle " + p(8, -2, -20) + " " + p(8, -2, -10) + " " + p(8, 10, -20) + " red\n";
-    return s;
-}
 
 static bool RenderText(const std::string &text, Image *image) {
     Scene scene;

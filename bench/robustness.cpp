@@ -1,0 +1,206 @@
+// bench/robustness.cpp -- `rtbench robustness`: the measured tables of docs/robustness.md.
+//
+// Where the claims of rt's robustness hold, in this build's precision: long triangles (closed
+// boxes, big floors, slivers, axis-aligned and turned), the assignment scene at every scale and
+// distance from the origin with each camera, and spheres and triangles of every size. Prints
+// Markdown; the tests (tests/test_long_triangles.cpp, test_ranges.cpp) assert the documented
+// parts of it.
+#include "../tests/robust_scenes.h"
+
+#include <cstdio>
+#include <random>
+
+static const bool kDouble = sizeof(real) == sizeof(double);
+static const char *kPrecision = sizeof(real) == sizeof(double) ? "double" : "float";
+
+// 2000 rays from random points inside the box: how many escape, how many of their mirror rays
+// escape, how many mirror rays meet the wall they left.
+static void BoxRow(double length, bool turn, std::mt19937_64 *rng) {
+    std::uniform_real_distribution<double> u(0, 1);
+    Scene box = BoxScene(length, turn);
+    int escapes = 0, mirrorEscapes = 0, reHits = 0;
+    for (int i = 0; i < 2000; i++) {
+        vec3 o = {(real)(-2 + 4 * u(*rng)), (real)(-1.5 + 3 * u(*rng)),
+                  (real)((u(*rng) - 0.5) * length)};
+        Ray ray = {Turn(o, turn), Turn(UnitDirection((real)u(*rng), (real)u(*rng)), turn)};
+        RayHit hit, next;
+        if (!FindNearestHit(&box, kRobustMethods, &ray, 0, kInfinity, &hit)) {
+            escapes++;
+            continue;
+        }
+        vec3 r = ray.dir - (2 * Dot(ray.dir, hit.normal)) * hit.normal;
+        Ray mirror = {OffsetRayOrigin(&hit, r), r};
+        if (!FindNearestHit(&box, kRobustMethods, &mirror, 0, kInfinity, &next))
+            mirrorEscapes++;
+        else if (next.index / 2 == hit.index / 2)
+            reHits++;
+    }
+    printf("| %s | box 4 x 3 x %g | %s | %d | %d | %d |\n", kPrecision, length,
+           turn ? "turned" : "aligned", escapes, mirrorEscapes, reHits);
+}
+
+// 2000 rays 25 degrees below the horizon from heights 1e-4..100 onto a floor: how many are lost.
+static void FloorRow(double half, bool turn, std::mt19937_64 *rng) {
+    std::uniform_real_distribution<double> u(0, 1);
+    vec3 corners[4];
+    Scene floor = FloorScene((real)half, turn, corners);
+    double slope = std::sin(25 * 3.14159265358979 / 180),
+           flat = std::cos(25 * 3.14159265358979 / 180);
+    int lost = 0;
+    for (double height : {1e-4, 1e-3, 1e-2, 1.0, 100.0}) {
+        for (int i = 0; i < 400; i++) {
+            double phi = 6.283185307179586 * u(*rng);
+            vec3 o = {(real)(10 * u(*rng) - 5), (real)height, (real)(10 * u(*rng) - 5)};
+            vec3 d = {(real)(flat * std::cos(phi)), (real)-slope, (real)(flat * std::sin(phi))};
+            Ray ray = {Turn(o, turn), Turn(d, turn)};
+            RayHit hit;
+            lost += !FindNearestHit(&floor, kRobustMethods, &ray, 0, kInfinity, &hit);
+        }
+    }
+    printf("| %s | floor of half-size %g | %s | %d | | |\n", kPrecision, half,
+           turn ? "turned" : "aligned", lost);
+}
+
+// 1000 rays straight down at interior points of a needle (0,0,0) (L,0,0) (0,0,1) or a cap
+// (0,0,0) (L,0,0) (L/2,0,1): how many miss.
+static void SliverRow(double length, bool cap, bool turn, std::mt19937_64 *rng) {
+    std::uniform_real_distribution<double> u(0, 1);
+    vec3 apex = cap ? vec3{(real)(length / 2), 0, 1} : vec3{0, 0, 1};
+    Scene s = WallScene();
+    s.triangles = {{Turn({0, 0, 0}, turn), Turn({(real)length, 0, 0}, turn), Turn(apex, turn), 0}};
+    int misses = 0;
+    for (int i = 0; i < 1000; i++) {
+        double a = 0.05 + 0.9 * u(*rng), b = (0.05 + 0.9 * u(*rng)) * (1 - a);
+        vec3 q = {(real)(a * length + b * apex.x), 1, (real)(b * apex.z)};
+        Ray ray = {Turn(q, turn), Turn({0, -1, 0}, turn)};
+        RayHit hit;
+        misses += !FindNearestHit(&s, kRobustMethods, &ray, 0, kInfinity, &hit);
+    }
+    printf("| %s | %s sliver of aspect %g | %s | %d | | |\n", kPrecision, cap ? "cap" : "needle",
+           length, turn ? "turned" : "aligned", misses);
+}
+
+static void LongTriangles() {
+    std::mt19937_64 rng(2026);
+    printf("### Long triangles, %s\n\n", kPrecision);
+    printf(
+        "| build | shape | orientation | rays lost (of 2000; slivers of 1000) | mirror rays "
+        "lost | mirror rays that re-hit their wall |\n| --- | --- | --- | ---: | ---: | ---: |\n");
+    const double boxes[] = {1e2, 1e4, 1e6, 1e8, 1e10, 1e12, 1e15};
+    const double floatBoxes[] = {1e2, 1e3, 3e3, 1e4, 1e5, 1e6};
+    for (int turn = 0; turn < 2; turn++)
+        for (double length : kDouble ? std::vector<double>(boxes, boxes + 7)
+                                     : std::vector<double>(floatBoxes, floatBoxes + 6))
+            BoxRow(length, turn, &rng);
+    for (int turn = 0; turn < 2; turn++)
+        for (double half : kDouble ? std::vector<double>{1e3, 1e6, 1e9, 1e12, 1e15}
+                                   : std::vector<double>{1e3, 1e4, 1e5, 1e6})
+            FloorRow(half, turn, &rng);
+    for (int turn = 0; turn < 2; turn++)
+        for (int cap = 0; cap < 2; cap++)
+            for (double length : kDouble ? std::vector<double>{1e4, 1e8, 1e12, 1e14}
+                                         : std::vector<double>{1e2, 1e4, 1e5, 1e6})
+                SliverRow(length, cap, turn, &rng);
+    printf("\n");
+}
+
+// The share of pixels of the 64 x 64 assignment scene (scaled, moved, with glass or not) within
+// 2/255 of the same scene at scale 1; -1 if the scene file was refused.
+static double Alike(double scale, double shift, const char *camera, bool glass) {
+    Image images[2];
+    for (int k = 0; k < 2; k++) {
+        Scene scene;
+        std::string error;
+        std::string text =
+            k ? AssignmentText(scale, shift, camera, glass) : AssignmentText(1, 0, camera, glass);
+        if (!ParseSceneText(text, "r.scene", &scene, &error))
+            return -1;
+        RenderSettings settings = {64, 64, 1, SAMPLES_GRID, 10, 1, kRobustMethods, false, {}, {}};
+        RayStats stats = {0, 0, 0, 0, 0};
+        Render(&scene, &settings, &images[k], &stats);
+    }
+    long alike = 0;
+    for (size_t p = 0; p < images[0].pixels.size(); p += 3) {
+        int largest = 0;
+        for (int c = 0; c < 3; c++)
+            largest =
+                std::max(largest, std::abs(images[0].pixels[p + c] - images[1].pixels[p + c]));
+        alike += largest <= 2;
+    }
+    return (double)alike / (64 * 64);
+}
+
+static void ScaleRow(const char *label, const std::vector<double> &values, bool shift) {
+    for (const char *camera : {"perspective", "screen", "lookat"}) {
+        for (bool glass : {false, true}) {
+            printf("| %s | %s%s |", label, camera, glass ? ", glass" : "");
+            for (double v : values) {
+                double share = shift ? Alike(1, v, camera, glass) : Alike(v, 0, camera, glass);
+                if (share < 0)
+                    printf(" refused |");
+                else
+                    printf(" %.4g%% |", 100 * share);
+            }
+            printf("\n");
+        }
+    }
+}
+
+static void Header(const char *what, const std::vector<double> &values) {
+    printf("| build | camera | ");
+    for (double v : values)
+        printf("%s %g | ", what, v);
+    printf("\n| --- | --- |");
+    for (size_t k = 0; k < values.size(); k++)
+        printf(" ---: |");
+    printf("\n");
+}
+
+static void Scales() {
+    std::vector<double> scales =
+        kDouble ? std::vector<double>{1e-300, 1e-200, 1e-100, 1e-30, 1e30, 1e100, 1e200, 1e300}
+                : std::vector<double>{1e-37, 1e-30, 1e-20, 1e-10, 1e10, 1e20, 1e30, 1e36};
+    std::vector<double> shifts = kDouble ? std::vector<double>{1e6, 1e10, 1e12, 1e13, 1e14, 1e15}
+                                         : std::vector<double>{1e3, 1e4, 1e5, 1e6, 1e7};
+    printf("### The assignment scene scaled, %s: pixels within 2/255 of scale 1\n\n", kPrecision);
+    Header("scale", scales);
+    ScaleRow(kPrecision, scales, false);
+    printf("\n### The assignment scene moved from the origin along (1, -1, 1), %s\n\n", kPrecision);
+    Header("moved", shifts);
+    ScaleRow(kPrecision, shifts, true);
+    printf("\n");
+}
+
+// Spheres and triangles of size s, seen from 10 s away: whether the hit is found and how far
+// the hit point is from the surface, in units of s.
+static void Sizes() {
+    std::vector<double> sizes =
+        kDouble ? std::vector<double>{1e-300, 1e-200, 1e-100, 1e100, 1e200, 1e300}
+                : std::vector<double>{1e-37, 1e-30, 1e-20, 1e20, 1e30, 1e36};
+    printf("### Shapes of every size, %s: seen from 10 sizes away, 3 degrees off the centre\n\n",
+           kPrecision);
+    printf("| size | sphere hit | its distance from the surface / r | triangle hit | relative error of "
+           "t |\n| ---: | --- | ---: | --- | ---: |\n");
+    for (double size : sizes) {
+        real r = (real)size, a = real(3 * 3.14159265358979 / 180);
+        Sphere sphere = {{0, 0, 0}, r, 0};
+        Ray ray = {{0, 0, 10 * r}, {std::sin(a), 0, -std::cos(a)}};
+        RayHit hit;
+        bool sphereHit = IntersectSphere(&sphere, &ray, 0, kInfinity, &hit);
+        double surface = sphereHit ? std::fabs((double)SafeLength(hit.point) / size - 1) : 0;
+        Triangle tri = {{-2 * r, -2 * r, 0}, {2 * r, -2 * r, 0}, {0, 2 * r, 0}, 0};
+        bool triangleHit = IntersectTriangle(&tri, &ray, 0, kInfinity, &hit);
+        double exact = 10 * size / std::cos((double)a);
+        double error = triangleHit ? std::fabs((double)hit.t - exact) / exact : 0;
+        printf("| %g | %s | %.2g | %s | %.2g |\n", size, sphereHit ? "yes" : "no", surface,
+               triangleHit ? "yes" : "no", error);
+    }
+    printf("\n");
+}
+
+int RobustnessTables() {
+    LongTriangles();
+    Scales();
+    Sizes();
+    return 0;
+}

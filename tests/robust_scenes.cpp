@@ -1,0 +1,93 @@
+// tests/robust_scenes.cpp -- the scenes of rt's robustness claims (robust_scenes.h).
+#include "robust_scenes.h"
+
+#include <cstdio>
+
+vec3 Turn(vec3 p, bool turn) {
+    if (!turn)
+        return p;
+    long double n = sqrtl(14.0L), ax = 1 / n, ay = 2 / n, az = 3 / n;
+    long double c = cosl(0.7L), s = sinl(0.7L), k = 1 - c, x = p.x, y = p.y, z = p.z;
+    return {
+        (real)((k * ax * ax + c) * x + (k * ax * ay - s * az) * y + (k * ax * az + s * ay) * z),
+        (real)((k * ax * ay + s * az) * x + (k * ay * ay + c) * y + (k * ay * az - s * ax) * z),
+        (real)((k * ax * az - s * ay) * x + (k * ay * az + s * ax) * y + (k * az * az + c) * z)};
+}
+
+Scene WallScene() {
+    Scene s;
+    InitScene(&s);
+    Material wall = {"wall", {1, 1, 1}, {1, 1, 1}, 0, 1, 0, 0};
+    s.materials.push_back(wall);
+    return s;
+}
+
+Scene BoxScene(double length, bool turn) {
+    Scene s = WallScene();
+    const real X[2] = {-2, 2}, Y[2] = {real(-1.5), real(1.5)};
+    const real Z[2] = {(real)(-length / 2), (real)(length / 2)};
+    const int faces[6][4][3] = {
+        {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},
+        {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}},
+        {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
+    for (const auto &f : faces) {
+        vec3 v[4];
+        for (int k = 0; k < 4; k++)
+            v[k] = Turn({X[f[k][0]], Y[f[k][1]], Z[f[k][2]]}, turn);
+        s.triangles.push_back({v[0], v[1], v[2], 0});
+        s.triangles.push_back({v[0], v[2], v[3], 0});
+    }
+    return s;
+}
+
+Scene FloorScene(real half, bool turn, vec3 corners[4]) {
+    Scene s = WallScene();
+    vec3 a = Turn({-half, 0, -half}, turn), b = Turn({half, 0, -half}, turn);
+    vec3 c = Turn({half, 0, half}, turn), d = Turn({-half, 0, half}, turn);
+    s.triangles = {{a, c, b, 0}, {a, d, c, 0}};
+    corners[0] = a, corners[1] = b, corners[2] = c, corners[3] = d;
+    return s;
+}
+
+vec3 UnitDirection(real u1, real u2) {
+    real z = 2 * u1 - 1, phi = real(6.283185307179586) * u2;
+    real r = std::sqrt(std::max(real(0), 1 - z * z));
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+std::string AssignmentText(double scale, double shift, const char *camera, bool glass) {
+    auto p = [&](double x, double y, double z) {
+        char t[96];
+        snprintf(t, sizeof t, "%.17g %.17g %.17g", x * scale + shift, y * scale - shift,
+                 z * scale + shift);
+        return std::string(t);
+    };
+    char number[64];
+    std::string s = "size 64 64\nmaterial mirror mirror 1\nmaterial red diffuse 1 0 0\n"
+                    "material blue diffuse 0 0 1\nmaterial white diffuse 1 1 1\n"
+                    "material glass glass 1.5\n";
+    if (std::string(camera) == "lookat") {
+        snprintf(number, sizeof number, "%.17g", 2 * std::atan(0.5) * 180 / 3.14159265358979323846);
+        s += "camera lookat " + p(0, 0, 0) + " " + p(0, 0, -1) + " 0 1 0 " + number + "\n";
+    } else if (std::string(camera) == "screen") {
+        snprintf(number, sizeof number, "%.17g 0 0 0 %.17g 0", 2 * scale, 2 * scale);
+        s += "camera screen " + p(0, 0, 0) + " " + p(-1, -1, -2) + " " + number + "\n";
+    } else {
+        snprintf(number, sizeof number, "%.17g %.17g", 2 * scale, 2 * scale);
+        s += "camera perspective " + p(0, 0, 0) + " " + number + "\n";
+    }
+    auto radius = [&](double r) {
+        snprintf(number, sizeof number, "%.17g", r * scale);
+        return std::string(number);
+    };
+    s += "light " + p(3, 5, -15) + "\n";
+    s += "sphere " + p(0, 0, -16) + " " + radius(2) + (glass ? " glass\n" : " mirror\n");
+    s += "sphere " + p(3, -1, -14) + " " + radius(1) + " mirror\n";
+    s += "sphere " + p(-3, -1, -14) + " " + radius(1) + " red\n";
+    s += "triangle " + p(-8, -2, -20) + " " + p(8, -2, -20) + " " + p(8, 10, -20) + " blue\n";
+    s += "triangle " + p(-8, -2, -20) + " " + p(8, 10, -20) + " " + p(-8, 10, -20) + " blue\n";
+    s += "triangle " + p(-8, -2, -20) + " " + p(8, -2, -10) + " " + p(8, -2, -20) + " white\n";
+    s += "triangle " + p(-8, -2, -20) + " " + p(-8, -2, -10) + " " + p(8, -2, -10) + " white\n";
+    s += "triangle " + p(8, -2, -20) + " " + p(8, -2, -10) + " " + p(8, 10, -20) + " red\n";
+    return s;
+}

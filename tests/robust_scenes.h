@@ -1,0 +1,31 @@
+// tests/robust_scenes.h -- the scenes of rt's robustness claims, shared by the tests (which
+// assert them) and `make bench` (which measures the table in docs/robustness.md).
+#ifndef RT_ROBUST_SCENES_H
+#define RT_ROBUST_SCENES_H
+
+#include "ray.h"
+
+// p turned by 0.7 radians about the axis (1, 2, 3) when `turn`, computed in long double and
+// rounded once: the corners of a turned shape are no longer on the grid of the unturned one.
+vec3 Turn(vec3 p, bool turn);
+
+// An empty scene with one white matte material, "wall".
+Scene WallScene();
+
+// A closed box [-2, 2] x [-1.5, 1.5] x [-L/2, L/2] of 12 triangles, two per face, faces in order
+// (triangles 2f and 2f + 1 make face f), turned or not.
+Scene BoxScene(double length, bool turn);
+
+// The two triangles (a, c, b) and (a, d, c) of the floor y = 0 of half-size `half`, turned or
+// not; *corners gets a, b, c, d.
+Scene FloorScene(real half, bool turn, vec3 corners[4]);
+
+// A uniformly random unit direction from two uniform numbers in [0, 1).
+vec3 UnitDirection(real u1, real u2);
+
+// The assignment scene as scene-file text at 64 x 64: every length times `scale`, moved by
+// `shift` along (1, -1, 1), seen by a camera of kind `camera` (perspective, screen or lookat);
+// `glass` makes the big sphere glass of index 1.5.
+std::string AssignmentText(double scale, double shift, const char *camera, bool glass);
+
+#endif
