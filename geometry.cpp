@@ -174,14 +174,14 @@ static real EdgeSign(real ax, real ay, real bx, real by) {
 static bool SetTriangleHit(const Triangle *tri, const Ray *ray, real t, real b0, real b1, real b2,
                            RayHit *hit) {
     // Return no intersection if the triangle is degenerate (zero area): it has no normal
-    vec3 n = Cross(tri->b - tri->a, tri->c - tri->a);
-    if (!(Dot(n, n) > 0) || !IsFinite(n))
+    vec3 n = SafeNormalize(Cross(tri->b - tri->a, tri->c - tri->a));
+    if (!(MaxComponent(n) > 0) || !IsFinite(n))
         return false;
     vec3 p0 = b0 * tri->a, p1 = b1 * tri->b, p2 = b2 * tri->c;
     hit->t = t;
     hit->point = p0 + p1 + p2;
     hit->pointError = Gamma(7) * (Abs(p0) + Abs(p1) + Abs(p2));
-    SetFaceNormal(ray, Normalize(n), hit);
+    SetFaceNormal(ray, n, hit);
     hit->material = tri->material;
     hit->shape = SHAPE_TRIANGLE;
     return true;
@@ -190,9 +190,9 @@ static bool SetTriangleHit(const Triangle *tri, const Ray *ray, real t, real b0,
 // The per-ray half of the watertight test, shared by every triangle the ray meets: the ray in
 // the renamed axes (see RenameAxes) and the shear that turns it into the +z axis.
 struct RayShear {
-    int kz;          // the axis renamed z: the largest |d| component
-    vec3 origin;     // the ray origin, axes renamed
-    real sx, sy;     // d[kx]/d[kz] and d[ky]/d[kz]
+    int kz;      // the axis renamed z: the largest |d| component
+    vec3 origin; // the ray origin, axes renamed
+    real sx, sy; // d[kx]/d[kz] and d[ky]/d[kz]
 };
 
 // v with its axes renamed (kx, ky, kz) = (kz + 1, kz + 2, kz) mod 3. A rotation keeps the
@@ -307,7 +307,7 @@ static bool IntersectShearedTriangle(const Triangle *tri, const Ray *ray, const 
         return false;
     // Rounding is monotonic, also into the subnormals and to infinity, so a rounded edge function
     // has its exact sign, or is 0, or is NaN (two products that both overflowed): those two are
-    // decided exactly
+    // decided exactly, and only their signs are kept
     if (u == 0 || v == 0 || w == 0 || std::isnan(u) || std::isnan(v) || std::isnan(w))
         ExactEdgeSigns(s, &u, &v, &w);
 
@@ -319,7 +319,7 @@ static bool IntersectShearedTriangle(const Triangle *tri, const Ray *ray, const 
 
     // Inside: where, from the triangle's plane (plane.cpp). The paper's own
     // t = (U Az + V Bz + W Cz) / (U + V + W) loses about u L^2 / w for a triangle of length L and
-    // width w, enough to lose the floor of a long corridor 1.5 units away.
+    // width w, more than the 1.5 units to the floor of a corridor 1e8 long.
     return HitTrianglePlane(tri, ray, tMin, tMax, hit);
 }
 
@@ -334,9 +334,9 @@ template <int kz> static inline bool PassesOutside(const Triangle *tri, const Ra
 
 // A ray's direction rescaled to a largest component in [1, 2) when it lies outside
 // kDirectionWindow (ray.h), and its interval with it, so that no shape test squares or divides a
-// direction of 1e-200 or 1e200 out of range. Scaling d by 2^k
-// scales every t by 2^-k exactly; ScaleBack undoes it. False for a direction that is zero (or
-// not finite): such a ray has no answer.
+// direction of 1e-200 or 1e200 out of range. Scaling d by 2^k scales every t by 2^-k exactly;
+// ScaleBack undoes it. False for a direction that is zero (or not finite): such a ray has no
+// answer.
 struct ScaledRay {
     Ray ray;
     int k;
@@ -344,8 +344,8 @@ struct ScaledRay {
 };
 
 static bool ScaleRay(const Ray *ray, real tMin, real tMax, ScaledRay *s) {
-    if (WithinWindow(MaxComponent(ray->dir), kDirectionWindow)) {
-        *s = {*ray, 0, tMin, tMax};
+    if (WithinWindow(MaxComponent(ray->dir), kDirectionWindow)) { // s->ray is not needed
+        s->k = 0, s->tMin = tMin, s->tMax = tMax;
         return true;
     }
     s->k = UnitExponent(ray->dir);
@@ -370,6 +370,8 @@ bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax
     RayHit found;
     if (!ScaleRay(ray, tMin, tMax, &s))
         return false;
+    if (s.k == 0)
+        s.ray = *ray;
     ShearRay(&s.ray, &shear);
     bool hits =
         shear.kz == 0   ? IntersectShearedTriangle<0>(tri, &s.ray, &shear, s.tMin, s.tMax, &found)
@@ -460,39 +462,35 @@ static bool HitTriangles(const Scene *scene, Methods methods, const Ray *ray, co
 // The second handout's nearest hit over the list of shapes: every hit shrinks tMax, so each
 // later shape only counts if it is nearer, and a tie keeps the earlier shape. With anyHit, the
 // first hit found ends the search (a shadow ray needs no more).
-static bool HitShapes(const Scene *scene, Methods methods, const Ray *unscaled, real tMin,
-                      real tMax, bool anyHit, RayHit *hit) {
+static bool HitShapes(const Scene *scene, Methods methods, const Ray *given, real tMin, real tMax,
+                      bool anyHit, RayHit *hit) {
     ScaledRay s;
-    if (!ScaleRay(unscaled, tMin, tMax, &s))
+    if (!ScaleRay(given, tMin, tMax, &s))
         return false;
-    const Ray *ray = &s.ray;
-    RayHit found;
-    bool any = false;
+    const Ray *ray = s.k == 0 ? given : &s.ray;
+    bool found = false;
     const Sphere *spheres = scene->spheres.data();
-    for (size_t i = 0, n = scene->spheres.size(); i < n && !(any && anyHit); i++) {
-        if (HitSphere(methods, &spheres[i], ray, s.tMin, s.tMax, &found)) {
-            found.index = (int)i;
-            s.tMax = found.t;
-            any = true;
+    for (size_t i = 0, n = scene->spheres.size(); i < n && !(found && anyHit); i++) {
+        if (HitSphere(methods, &spheres[i], ray, s.tMin, s.tMax, hit)) {
+            hit->index = (int)i;
+            s.tMax = hit->t;
+            found = true;
         }
     }
-    if (!(any && anyHit)) {
+    if (!(found && anyHit)) {
         RayShear shear;
         ShearRay(ray, &shear);
         if (shear.kz == 0)
-            any =
-                HitTriangles<0>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, &found) || any;
+            found =
+                HitTriangles<0>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, hit) || found;
         else if (shear.kz == 1)
-            any =
-                HitTriangles<1>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, &found) || any;
+            found =
+                HitTriangles<1>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, hit) || found;
         else
-            any =
-                HitTriangles<2>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, &found) || any;
+            found =
+                HitTriangles<2>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, hit) || found;
     }
-    if (!any || !ScaleBack(&s, tMin, tMax, &found))
-        return false;
-    *hit = found;
-    return true;
+    return found && ScaleBack(&s, tMin, tMax, hit);
 }
 
 bool FindNearestHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax,
