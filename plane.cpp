@@ -42,6 +42,12 @@ const double kU = std::numeric_limits<double>::epsilon() / 2;
 static double GammaD(int n) { return n * kU / (1 - n * kU); }
 
 
+// Tier 2 is taken when tier 1's bound is wider than this share of t: then the hit point
+// o + t d, which inherits the error of t, would sit farther off the surface than a few roundings
+// of its coordinates, and probes would print digits that are not known. 32 u of `real` is twice
+// what tier 1 gives a ray that meets an axis-aligned wall head-on, so ordinary hits stay in tier 1.
+const double kPlainRelativeError = 32 * (double)kUnitRoundoff;
+
 // ---- double-double arithmetic (tier 2) ------------------------------------------------------
 
 // A number carried as the unevaluated sum hi + lo, |lo| <= u |hi|: about twice the digits of

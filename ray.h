@@ -374,13 +374,6 @@ bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax
 bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                              RayHit *hit);
 
-// How accurate a computed t must be to be used as it is: within 32 u of itself (twice what the
-// plane's t has for a ray that meets an axis-aligned wall head-on). A t whose error bound is
-// wider is computed again, more carefully (geometry.cpp, plane.cpp): a hit point o + t d, which
-// inherits the error of t, then sits no farther off the surface than a few roundings of its
-// coordinates, and probes print t to nearly every digit.
-const double kPlainRelativeError = 32 * (double)kUnitRoundoff;
-
 // The hit record of a triangle whose interior the ray passes through (plane.cpp): t from the
 // triangle's plane, accurate for triangles of any length, and the point o + t d; false if t is
 // outside (tMin, tMax) or within its rounding error of 0 (the ray has just left this plane).
