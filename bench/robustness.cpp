@@ -15,7 +15,7 @@ static const char *kPrecision = sizeof(real) == sizeof(double) ? "double" : "flo
 
 // 2000 rays from random points inside the box: how many escape, how many of their mirror rays
 // escape, how many mirror rays meet the wall they left.
-static void BoxRow(double length, bool turn, std::mt19937_64 *rng) {
+static std::string BoxCell(double length, bool turn, std::mt19937_64 *rng) {
     std::uniform_real_distribution<double> u(0, 1);
     Scene box = BoxScene(length, turn);
     int escapes = 0, mirrorEscapes = 0, reHits = 0;
@@ -35,12 +35,13 @@ static void BoxRow(double length, bool turn, std::mt19937_64 *rng) {
         else if (next.index / 2 == hit.index / 2)
             reHits++;
     }
-    printf("| %s | box 4 x 3 x %g | %s | %d | %d | %d |\n", kPrecision, length,
-           turn ? "turned" : "aligned", escapes, mirrorEscapes, reHits);
+    char cell[64];
+    snprintf(cell, sizeof cell, "%d / %d / %d", escapes, mirrorEscapes, reHits);
+    return cell;
 }
 
 // 2000 rays 25 degrees below the horizon from heights 1e-4..100 onto a floor: how many are lost.
-static void FloorRow(double half, bool turn, std::mt19937_64 *rng) {
+static std::string FloorCell(double half, bool turn, std::mt19937_64 *rng) {
     std::uniform_real_distribution<double> u(0, 1);
     vec3 corners[4];
     Scene floor = FloorScene((real)half, turn, corners);
@@ -57,13 +58,12 @@ static void FloorRow(double half, bool turn, std::mt19937_64 *rng) {
             lost += !FindNearestHit(&floor, kRobustMethods, &ray, 0, kInfinity, &hit);
         }
     }
-    printf("| %s | floor of half-size %g | %s | %d | | |\n", kPrecision, half,
-           turn ? "turned" : "aligned", lost);
+    return std::to_string(lost);
 }
 
 // 1000 rays straight down at interior points of a needle (0,0,0) (L,0,0) (0,0,1) or a cap
 // (0,0,0) (L,0,0) (L/2,0,1): how many miss.
-static void SliverRow(double length, bool cap, bool turn, std::mt19937_64 *rng) {
+static std::string SliverCell(double length, bool cap, bool turn, std::mt19937_64 *rng) {
     std::uniform_real_distribution<double> u(0, 1);
     vec3 apex = cap ? vec3{(real)(length / 2), 0, 1} : vec3{0, 0, 1};
     Scene s = WallScene();
@@ -76,32 +76,60 @@ static void SliverRow(double length, bool cap, bool turn, std::mt19937_64 *rng) 
         RayHit hit;
         misses += !FindNearestHit(&s, kRobustMethods, &ray, 0, kInfinity, &hit);
     }
-    printf("| %s | %s sliver of aspect %g | %s | %d | | |\n", kPrecision, cap ? "cap" : "needle",
-           length, turn ? "turned" : "aligned", misses);
+    return std::to_string(misses);
+}
+
+// A table: one row per shape and orientation, one column per size.
+static void Table(const char *title, const char *unit, const std::vector<double> &sizes,
+                  const char *rowNames[2],
+                  std::string (*cell)(double size, int row, bool turn, std::mt19937_64 *rng),
+                  int rows, std::mt19937_64 *rng) {
+    printf("%s, %s\n\n| shape | ", title, kPrecision);
+    for (double size : sizes)
+        printf("%s %g | ", unit, size);
+    printf("\n| --- |");
+    for (size_t k = 0; k < sizes.size(); k++)
+        printf(" ---: |");
+    printf("\n");
+    for (int row = 0; row < rows; row++) {
+        for (int turn = 0; turn < 2; turn++) {
+            printf("| %s, %s |", rowNames[row], turn ? "turned" : "axis-aligned");
+            for (double size : sizes)
+                printf(" %s |", cell(size, row, turn, rng).c_str());
+            printf("\n");
+        }
+    }
+    printf("\n");
+}
+
+static std::string BoxTableCell(double size, int, bool turn, std::mt19937_64 *rng) {
+    return BoxCell(size, turn, rng);
+}
+static std::string FloorTableCell(double size, int, bool turn, std::mt19937_64 *rng) {
+    return FloorCell(size, turn, rng);
+}
+static std::string SliverTableCell(double size, int row, bool turn, std::mt19937_64 *rng) {
+    return SliverCell(size, row == 1, turn, rng);
 }
 
 static void LongTriangles() {
     std::mt19937_64 rng(2026);
-    printf("### Long triangles, %s\n\n", kPrecision);
-    printf(
-        "| build | shape | orientation | rays lost (of 2000; slivers of 1000) | mirror rays "
-        "lost | mirror rays that re-hit their wall |\n| --- | --- | --- | ---: | ---: | ---: |\n");
-    const double boxes[] = {1e2, 1e4, 1e6, 1e8, 1e10, 1e12, 1e15};
-    const double floatBoxes[] = {1e2, 1e3, 3e3, 1e4, 1e5, 1e6};
-    for (int turn = 0; turn < 2; turn++)
-        for (double length : kDouble ? std::vector<double>(boxes, boxes + 7)
-                                     : std::vector<double>(floatBoxes, floatBoxes + 6))
-            BoxRow(length, turn, &rng);
-    for (int turn = 0; turn < 2; turn++)
-        for (double half : kDouble ? std::vector<double>{1e3, 1e6, 1e9, 1e12, 1e15}
-                                   : std::vector<double>{1e3, 1e4, 1e5, 1e6})
-            FloorRow(half, turn, &rng);
-    for (int turn = 0; turn < 2; turn++)
-        for (int cap = 0; cap < 2; cap++)
-            for (double length : kDouble ? std::vector<double>{1e4, 1e8, 1e12, 1e14}
-                                         : std::vector<double>{1e2, 1e4, 1e5, 1e6})
-                SliverRow(length, cap, turn, &rng);
-    printf("\n");
+    const char *box[2] = {"box 4 x 3 x L", ""}, *floor[2] = {"floor", ""};
+    const char *slivers[2] = {"needle", "cap"};
+    Table("### Closed boxes: of 2000 rays from inside, lost / mirror rays lost / mirror rays that "
+          "re-hit their wall",
+          "L",
+          kDouble ? std::vector<double>{1e2, 1e4, 1e6, 1e8, 1e10, 1e12, 1e15}
+                  : std::vector<double>{1e2, 1e3, 3e3, 1e4, 1e5, 1e6},
+          box, BoxTableCell, 1, &rng);
+    Table("### Floors: of 2000 rays 25 degrees down from heights 1e-4..100, lost", "half-size",
+          kDouble ? std::vector<double>{1e3, 1e6, 1e9, 1e12, 1e15}
+                  : std::vector<double>{1e3, 1e4, 1e5, 1e6},
+          floor, FloorTableCell, 1, &rng);
+    Table("### Slivers: of 1000 rays down at interior points, lost", "aspect",
+          kDouble ? std::vector<double>{1e4, 1e8, 1e12, 1e14}
+                  : std::vector<double>{1e2, 1e4, 1e5, 1e6},
+          slivers, SliverTableCell, 2, &rng);
 }
 
 // The share of pixels of the 64 x 64 assignment scene (scaled, moved, with glass or not) within
@@ -179,7 +207,8 @@ static void Sizes() {
                 : std::vector<double>{1e-37, 1e-30, 1e-20, 1e20, 1e30, 1e36};
     printf("### Shapes of every size, %s: seen from 10 sizes away, 3 degrees off the centre\n\n",
            kPrecision);
-    printf("| size | sphere hit | its distance from the surface / r | triangle hit | relative error of "
+    printf("| size | sphere hit | its distance from the surface / r | triangle hit | relative "
+           "error of "
            "t |\n| ---: | --- | ---: | --- | ---: |\n");
     for (double size : sizes) {
         real r = (real)size, a = real(3 * 3.14159265358979 / 180);
