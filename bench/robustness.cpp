@@ -13,30 +13,12 @@
 static const bool kDouble = sizeof(real) == sizeof(double);
 static const char *kPrecision = sizeof(real) == sizeof(double) ? "double" : "float";
 
-// 2000 rays from random points inside the box: how many escape, how many of their mirror rays
-// escape, how many mirror rays meet the wall they left.
+// 2000 rays from random points inside the box (CountBoxLeaks): lost, mirror rays lost, mirror
+// rays that meet the wall they left.
 static std::string BoxCell(double length, bool turn, std::mt19937_64 *rng) {
-    std::uniform_real_distribution<double> u(0, 1);
-    Scene box = BoxScene(length, turn);
-    int escapes = 0, mirrorEscapes = 0, reHits = 0;
-    for (int i = 0; i < 2000; i++) {
-        vec3 o = {(real)(-2 + 4 * u(*rng)), (real)(-1.5 + 3 * u(*rng)),
-                  (real)((u(*rng) - 0.5) * length)};
-        Ray ray = {Turn(o, turn), Turn(UnitDirection((real)u(*rng), (real)u(*rng)), turn)};
-        RayHit hit, next;
-        if (!FindNearestHit(&box, kRobustMethods, &ray, 0, kInfinity, &hit)) {
-            escapes++;
-            continue;
-        }
-        vec3 r = ray.dir - (2 * Dot(ray.dir, hit.normal)) * hit.normal;
-        Ray mirror = {OffsetRayOrigin(&hit, r), r};
-        if (!FindNearestHit(&box, kRobustMethods, &mirror, 0, kInfinity, &next))
-            mirrorEscapes++;
-        else if (next.index / 2 == hit.index / 2)
-            reHits++;
-    }
+    BoxLeaks leaks = CountBoxLeaks(length, turn, 2000, (*rng)());
     char cell[64];
-    snprintf(cell, sizeof cell, "%d / %d / %d", escapes, mirrorEscapes, reHits);
+    snprintf(cell, sizeof cell, "%d / %d / %d", leaks.escapes, leaks.mirrorEscapes, leaks.reHits);
     return cell;
 }
 
@@ -79,18 +61,27 @@ static std::string SliverCell(double length, bool cap, bool turn, std::mt19937_6
     return std::to_string(misses);
 }
 
+// A Markdown table's header: the first columns' names, then `unit value` for each value.
+static void Header(const char *first, int firstColumns, const char *unit,
+                   const std::vector<double> &values) {
+    printf("| %s | ", first);
+    for (double v : values)
+        printf("%s %g | ", unit, v);
+    printf("\n|");
+    for (int k = 0; k < firstColumns; k++)
+        printf(" --- |");
+    for (size_t k = 0; k < values.size(); k++)
+        printf(" ---: |");
+    printf("\n");
+}
+
 // A table: one row per shape and orientation, one column per size.
 static void Table(const char *title, const char *unit, const std::vector<double> &sizes,
                   const char *rowNames[2],
                   std::string (*cell)(double size, int row, bool turn, std::mt19937_64 *rng),
                   int rows, std::mt19937_64 *rng) {
-    printf("%s, %s\n\n| shape | ", title, kPrecision);
-    for (double size : sizes)
-        printf("%s %g | ", unit, size);
-    printf("\n| --- |");
-    for (size_t k = 0; k < sizes.size(); k++)
-        printf(" ---: |");
-    printf("\n");
+    printf("%s, %s\n\n", title, kPrecision);
+    Header("shape", 1, unit, sizes);
     for (int row = 0; row < rows; row++) {
         for (int turn = 0; turn < 2; turn++) {
             printf("| %s, %s |", rowNames[row], turn ? "turned" : "axis-aligned");
@@ -174,16 +165,6 @@ static void ScaleRow(const char *label, const std::vector<double> &values, bool 
     }
 }
 
-static void Header(const char *what, const std::vector<double> &values) {
-    printf("| build | camera | ");
-    for (double v : values)
-        printf("%s %g | ", what, v);
-    printf("\n| --- | --- |");
-    for (size_t k = 0; k < values.size(); k++)
-        printf(" ---: |");
-    printf("\n");
-}
-
 static void Scales() {
     std::vector<double> scales =
         kDouble ? std::vector<double>{1e-300, 1e-200, 1e-100, 1e-30, 1e30, 1e100, 1e200, 1e300}
@@ -191,10 +172,10 @@ static void Scales() {
     std::vector<double> shifts = kDouble ? std::vector<double>{1e6, 1e10, 1e12, 1e13, 1e14, 1e15}
                                          : std::vector<double>{1e3, 1e4, 1e5, 1e6, 1e7};
     printf("### The assignment scene scaled, %s: pixels within 2/255 of scale 1\n\n", kPrecision);
-    Header("scale", scales);
+    Header("build | camera", 2, "scale", scales);
     ScaleRow(kPrecision, scales, false);
     printf("\n### The assignment scene moved from the origin along (1, -1, 1), %s\n\n", kPrecision);
-    Header("moved", shifts);
+    Header("build | camera", 2, "moved", shifts);
     ScaleRow(kPrecision, shifts, true);
     printf("\n");
 }

@@ -91,3 +91,31 @@ std::string AssignmentText(double scale, double shift, const char *camera, bool 
     s += "triangle " + p(8, -2, -20) + " " + p(8, -2, -10) + " " + p(8, 10, -20) + " red\n";
     return s;
 }
+
+BoxLeaks CountBoxLeaks(double length, bool turn, int rays, uint64_t seed) {
+    uint64_t state = seed;
+    auto uniform = [&state]() { // a 64-bit LCG's top 53 bits, in [0, 1)
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return (double)(state >> 11) * (1.0 / 9007199254740992.0);
+    };
+    Scene box = BoxScene(length, turn);
+    BoxLeaks leaks = {0, 0, 0};
+    for (int i = 0; i < rays; i++) {
+        vec3 o = {(real)(-2 + 4 * uniform()), (real)(-1.5 + 3 * uniform()),
+                  (real)((uniform() - 0.5) * length)};
+        real u1 = (real)uniform(), u2 = (real)uniform();
+        Ray ray = {Turn(o, turn), Turn(UnitDirection(u1, u2), turn)};
+        RayHit hit, next;
+        if (!FindNearestHit(&box, kRobustMethods, &ray, 0, kInfinity, &hit)) {
+            leaks.escapes++;
+            continue;
+        }
+        vec3 r = ray.dir - (2 * Dot(ray.dir, hit.normal)) * hit.normal;
+        Ray mirror = {OffsetRayOrigin(&hit, r), r};
+        if (!FindNearestHit(&box, kRobustMethods, &mirror, 0, kInfinity, &next))
+            leaks.mirrorEscapes++;
+        else if (next.index / 2 == hit.index / 2)
+            leaks.reHits++;
+    }
+    return leaks;
+}

@@ -20,6 +20,14 @@ Scene BoxScene(double length, bool turn);
 // not; *corners gets a, b, c, d.
 Scene FloorScene(real half, bool turn, vec3 corners[4]);
 
+// What `rays` random rays from random points inside BoxScene(length, turn) do: how many escape,
+// how many of their mirror rays (from the wall they meet) escape, and how many mirror rays meet
+// the face they left, which a convex box never allows. Deterministic for a given seed.
+struct BoxLeaks {
+    int escapes, mirrorEscapes, reHits;
+};
+BoxLeaks CountBoxLeaks(double length, bool turn, int rays, uint64_t seed);
+
 // A uniformly random unit direction from two uniform numbers in [0, 1).
 vec3 UnitDirection(real u1, real u2);
 

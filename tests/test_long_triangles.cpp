@@ -33,35 +33,18 @@ static void TestCorridorFloor() {
 static void TestClosedBoxesHoldEveryRay() {
     const double lengths[] = {1e2, 1e4, 1e8, 1e12};
     const double floatLengths[] = {1e2, 1e3, 3e3, 1e4};
-    TestRng rng = {2024};
     for (int turn = 0; turn < 2; turn++) {
         for (int k = 0; k < 4; k++) {
             double length = kDouble ? lengths[k] : floatLengths[k];
-            Scene box = BoxScene(length, turn);
-            int escapes = 0, reflectedEscapes = 0, reHits = 0;
-            for (int i = 0; i < 500; i++) {
-                vec3 o = {-2 + 4 * Uniform(&rng), real(-1.5) + 3 * Uniform(&rng),
-                          (real)((Uniform(&rng) - 0.5) * length)};
-                Ray ray = {Turn(o, turn), Turn(UnitDirection(Uniform(&rng), Uniform(&rng)), turn)};
-                RayHit hit, next;
-                if (!FindNearestHit(&box, kRobustMethods, &ray, 0, kInfinity, &hit)) {
-                    escapes++;
-                    continue;
-                }
-                vec3 r = ray.dir - (2 * Dot(ray.dir, hit.normal)) * hit.normal;
-                Ray mirror = {OffsetRayOrigin(&hit, r), r};
-                if (!FindNearestHit(&box, kRobustMethods, &mirror, 0, kInfinity, &next))
-                    reflectedEscapes++;
-                else if (next.index / 2 == hit.index / 2)
-                    reHits++;
-            }
+            BoxLeaks leaks = CountBoxLeaks(length, turn, 500, 2024 + 7 * k + turn);
             char what[160];
             snprintf(
                 what, sizeof what,
                 "%s box 4 x 3 x %g: 500 rays from inside, %d escape, %d mirror rays escape, %d "
                 "re-hit their wall",
-                turn ? "rotated" : "axis-aligned", length, escapes, reflectedEscapes, reHits);
-            CHECK(escapes == 0 && reflectedEscapes == 0 && reHits == 0, what);
+                turn ? "rotated" : "axis-aligned", length, leaks.escapes, leaks.mirrorEscapes,
+                leaks.reHits);
+            CHECK(leaks.escapes == 0 && leaks.mirrorEscapes == 0 && leaks.reHits == 0, what);
         }
     }
 }
