@@ -8,7 +8,6 @@
 #include "ray.h"
 
 #include <algorithm>
-#include <cassert>
 
 // Writes the fields every shape fills the same way; `outwardNormal` must be unit length.
 // The normal is turned to face the incoming ray, and frontFace records which side it came from;
