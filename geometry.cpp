@@ -125,45 +125,34 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
     return true;
 }
 
-// The textbook sphere test, kept only so `make bench` can show what the stable form buys:
-// t = (-b -+ sqrt(b^2 - a c0)) / a with c0 = f.f - r^2 and the hit point o + t d. It loses a
-// small sphere far away (c0 swallows r^2) and the near root of a big one (-b + sqrt cancels).
+// The assignment handout's sphere test, as the slide writes it: A t^2 + B t + C = 0 with
+// A = d.d, B = 2 d.(o - c), C = (o - c).(o - c) - r^2; no hit if B^2 - 4AC < 0; else the least root
+// above tMin (the second handout: the least non-negative one), and the point o + t d. It loses a
+// small sphere far away (C swallows r^2) and the near root of a big one (-B + sqrt cancels).
+// Its point's honest error bound is measured, not assumed: how far o + t d is from the sphere.
 bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
-    vec3 d = ray->dir, f = ray->origin - s->center;
-    real a = Dot(d, d), b = Dot(f, d), c0 = Dot(f, f) - s->radius * s->radius;
-    real disc = b * b - a * c0;
-    if (!(disc >= 0) || !(a > 0))
+    vec3 d = ray->dir, oc = ray->origin - s->center;
+    real A = Dot(d, d);
+    real B = 2 * Dot(d, oc);
+    real C = Dot(oc, oc) - s->radius * s->radius;
+    real discriminant = B * B - 4 * A * C;
+    if (!(discriminant >= 0) || !(A > 0))
         return false;
-    real t = (-b - std::sqrt(disc)) / a;
+    real t = (-B - std::sqrt(discriminant)) / (2 * A);
     if (!(t > tMin))
-        t = (-b + std::sqrt(disc)) / a;
+        t = (-B + std::sqrt(discriminant)) / (2 * A);
     if (!(t > tMin && t < tMax))
         return false;
-    vec3 local = f + t * d;
     hit->t = t;
     hit->point = ray->origin + t * d;
-    hit->pointError = Gamma(5) * Abs(local) + Gamma(1) * Abs(hit->point);
-    SetFaceNormal(ray, (1 / s->radius) * local, hit);
+    vec3 local = hit->point - s->center;
+    vec3 normal = (1 / s->radius) * local;
+    real offSphere = std::fabs(SafeLength(local) - s->radius) + Gamma(4) * SafeLength(local);
+    hit->pointError = offSphere * Abs(normal) + Gamma(2) * Abs(hit->point);
+    SetFaceNormal(ray, SafeNormalize(normal), hit);
     hit->material = s->material;
     hit->shape = SHAPE_SPHERE;
     return true;
-}
-
-// The sign of a.x * b.y - a.y * b.x (-1, 0 or 1), exact, also where the rounded difference of
-// products is 0 or NaN (inf - inf). In float the products are exact in double, and no float
-// squared leaves double's range. In double, Kahan's difference of products with fused
-// multiply-adds is within 2 ulp of the exact value (Jeannerod, Louvet & Muller, Math. Comp.
-// 2013), so its sign, and whether it is 0, are exact; the caller has scaled the corners so that
-// no product over- or underflows.
-static real EdgeSign(real ax, real ay, real bx, real by) {
-#ifdef RT_FLOAT
-    double e = (double)ax * (double)by - (double)ay * (double)bx;
-#else
-    real product = ay * bx;
-    real productError = std::fma(-ay, bx, product);
-    real e = std::fma(ax, by, -product) + productError;
-#endif
-    return e > 0 ? real(1) : e < 0 ? real(-1) : real(0);
 }
 
 // Fills the hit record of a triangle hit at ray parameter t with barycentric coordinates
@@ -184,151 +173,6 @@ static bool SetTriangleHit(const Triangle *tri, const Ray *ray, real t, real b0,
     hit->material = tri->material;
     hit->shape = SHAPE_TRIANGLE;
     return true;
-}
-
-// The per-ray half of the watertight test, shared by every triangle the ray meets: the ray in
-// the renamed axes (see RenameAxes) and the shear that turns it into the +z axis.
-struct RayShear {
-    int kz;      // the axis renamed z: the largest |d| component
-    vec3 origin; // the ray origin, axes renamed
-    real sx, sy; // d[kx]/d[kz] and d[ky]/d[kz]
-};
-
-// v with its axes renamed (kx, ky, kz) = (kz + 1, kz + 2, kz) mod 3. A rotation keeps the
-// triangles' winding, whatever kz is. kz is a compile-time constant, so every component below is
-// a plain field, not an indexed load: the triangle loop is compiled once per axis (HitShapes).
-template <int kz> static inline vec3 RenameAxes(vec3 v) {
-    if constexpr (kz == 0)
-        return {v.y, v.z, v.x};
-    else if constexpr (kz == 1)
-        return {v.z, v.x, v.y};
-    else
-        return v;
-}
-
-// The per-ray half of the watertight test (Woop, Benthin & Wald 2013, §3): kz is the largest
-// |d| component, and the shear turns the ray into the +z axis. It depends on the ray only, so
-// the shape loop computes it once for all the triangles. (The paper also swaps kx and ky when
-// d[kz] < 0, to keep the winding for back-face culling. That negates u, v and w together, which
-// changes nothing for a two-sided test, so it is left out.)
-template <int kz> static void ShearRayAxes(const Ray *ray, RayShear *shear) {
-    vec3 d = RenameAxes<kz>(ray->dir);
-    *shear = {kz, RenameAxes<kz>(ray->origin), d.x / d.z, d.y / d.z};
-}
-
-static void ShearRay(const Ray *ray, RayShear *shear) {
-    vec3 ad = Abs(ray->dir);
-    int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
-    if (kz == 0)
-        ShearRayAxes<0>(ray, shear);
-    else if (kz == 1)
-        ShearRayAxes<1>(ray, shear);
-    else
-        ShearRayAxes<2>(ray, shear);
-}
-
-// A triangle seen from the ray (ShearCorners): corners moved to the ray origin, axes renamed and
-// sheared so the ray is the +z axis. x and y are final; z is not yet scaled by 1 / d[kz].
-struct ShearedTriangle {
-    real ax, ay, bx, by, cx, cy;
-    real az, bz, cz;
-};
-
-// The signs of the three edge functions of the sheared triangle (IntersectShearedTriangle), exact.
-// Called only when a rounded one came out 0 or NaN, so it is kept out of line. In double the
-// corners are first scaled by a power of two so the largest coordinate is near 1: products of
-// corners 1e-200 or 1e200 from the ray origin then neither underflow nor overflow (float needs
-// no scaling: its products are computed in double).
-static void ExactEdgeSigns(ShearedTriangle s, real *u, real *v, real *w) {
-#ifndef RT_FLOAT
-    real largest = std::max({std::fabs(s.ax), std::fabs(s.ay), std::fabs(s.bx), std::fabs(s.by),
-                             std::fabs(s.cx), std::fabs(s.cy)});
-    if (largest > 0 && std::isfinite(largest)) {
-        int k = -BinaryExponent(largest);
-        real *coordinate[6] = {&s.ax, &s.ay, &s.bx, &s.by, &s.cx, &s.cy};
-        for (real *c : coordinate)
-            *c = ScaleByPowerOfTwo(*c, k);
-    }
-#endif
-    *u = EdgeSign(s.cx, s.cy, s.bx, s.by);
-    *v = EdgeSign(s.ax, s.ay, s.cx, s.cy);
-    *w = EdgeSign(s.bx, s.by, s.ax, s.ay);
-}
-
-// The corners of a triangle as the ray sees them: moved to the ray origin, renamed, sheared.
-template <int kz>
-static inline ShearedTriangle ShearCorners(const Triangle *tri, const RayShear *k) {
-    vec3 A = RenameAxes<kz>(tri->a) - k->origin;
-    vec3 B = RenameAxes<kz>(tri->b) - k->origin;
-    vec3 C = RenameAxes<kz>(tri->c) - k->origin;
-    return {A.x - k->sx * A.z,
-            A.y - k->sy * A.z,
-            B.x - k->sx * B.z,
-            B.y - k->sy * B.z,
-            C.x - k->sx * C.z,
-            C.y - k->sy * C.z,
-            A.z,
-            B.z,
-            C.z};
-}
-
-// The 2D edge functions U, V, W of the sheared corners (see IntersectShearedTriangle), rounded.
-// True if two have strictly opposite signs: the ray passes outside an edge. Rounding is
-// monotonic (x >= y gives fl(x) >= fl(y)), so a rounded a b - c d has the sign of the exact one
-// or is 0. A true here is therefore never wrong, and a 0 is left to the exact recomputation.
-// Two that disagree end the test before the third is computed.
-static inline bool EdgesDisagree(const ShearedTriangle *s, real *u, real *v, real *w) {
-    *u = s->cx * s->by - s->cy * s->bx;
-    *v = s->ax * s->cy - s->ay * s->cx;
-    if ((*u < 0 && *v > 0) || (*u > 0 && *v < 0))
-        return true;
-    *w = s->bx * s->ay - s->by * s->ax;
-    return (*w < 0 && (*u > 0 || *v > 0)) || (*w > 0 && (*u < 0 || *v < 0));
-}
-
-// Watertight ray/triangle intersection (Woop, Benthin & Wald, "Watertight Ray/Triangle
-// Intersection", JCGT 2(1), 2013). Move the ray origin to 0, rename the axes and shear so the
-// ray is the +z axis (ShearRay); the ray then hits the triangle iff the 2D edge functions
-//   U = Cx By - Cy Bx,  V = Ax Cy - Ay Cx,  W = Bx Ay - By Ax
-// of the sheared corners agree in sign. t then comes from the triangle's plane (plane.cpp).
-// Why watertight: a corner shared by two triangles is transformed to the same numbers in both,
-// so a shared edge's function is the same number with the opposite sign, and the one case in
-// which rounding can lie, a value of exactly 0, is recomputed exactly. No epsilon anywhere.
-template <int kz>
-static bool IntersectShearedTriangle(const Triangle *tri, const Ray *ray, const RayShear *k,
-                                     real tMin, real tMax, RayHit *hit) {
-    // Translate the corners to the ray origin and shear them so the ray is the +z axis
-    ShearedTriangle s = ShearCorners<kz>(tri, k);
-
-    // The 2D edge functions
-    real u, v, w;
-    if (EdgesDisagree(&s, &u, &v, &w))
-        return false;
-    // Rounding is monotonic, also into the subnormals and to infinity, so a rounded edge function
-    // has its exact sign, or is 0, or is NaN (two products that both overflowed): those two are
-    // decided exactly, and only their signs are kept
-    if (u == 0 || v == 0 || w == 0 || std::isnan(u) || std::isnan(v) || std::isnan(w))
-        ExactEdgeSigns(s, &u, &v, &w);
-
-    // Reject if the signs differ (the ray passes outside an edge) or the ray is in the plane
-    if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0))
-        return false;
-    if (u == 0 && v == 0 && w == 0)
-        return false;
-
-    // Inside: where, from the triangle's plane (plane.cpp). The paper's own
-    // t = (U Az + V Bz + W Cz) / (U + V + W) loses about u L^2 / w for a triangle of length L and
-    // width w, more than the 1.5 units to the floor of a corridor 1e8 long.
-    return HitTrianglePlane(tri, ray, tMin, tMax, hit);
-}
-
-// The first step of IntersectShearedTriangle, small enough to sit inside the shape loop: true if
-// the ray passes outside an edge by the rounded edge functions alone. Most triangles a ray meets
-// end here, and only the rest pay for the whole test (which repeats these few operations).
-template <int kz> static inline bool PassesOutside(const Triangle *tri, const RayShear *k) {
-    ShearedTriangle s = ShearCorners<kz>(tri, k);
-    real u, v, w;
-    return EdgesDisagree(&s, &u, &v, &w);
 }
 
 // A ray's direction rescaled to a largest component in [1, 2) when it lies outside
@@ -372,11 +216,8 @@ bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax
     if (s.k == 0)
         s.ray = *ray;
     ShearRay(&s.ray, &shear);
-    bool hits =
-        shear.kz == 0   ? IntersectShearedTriangle<0>(tri, &s.ray, &shear, s.tMin, s.tMax, &found)
-        : shear.kz == 1 ? IntersectShearedTriangle<1>(tri, &s.ray, &shear, s.tMin, s.tMax, &found)
-                        : IntersectShearedTriangle<2>(tri, &s.ray, &shear, s.tMin, s.tMax, &found);
-    if (!hits || !ScaleBack(&s, tMin, tMax, &found))
+    if (!IntersectWatertight(tri, &s.ray, &shear, s.tMin, s.tMax, &found) ||
+        !ScaleBack(&s, tMin, tMax, &found))
         return false;
     *hit = found;
     return true;
@@ -416,6 +257,41 @@ bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, rea
     return SetTriangleHit(tri, ray, t, 1 - beta - gamma, beta, gamma, hit);
 }
 
+// The second handout's triangle test, in two steps. First the plane: n = (b - a) x (c - a) and
+// t = n.(a - o) / n.d (no hit if the ray is parallel, n.d = 0). Then inside or outside: the hit
+// point p is inside if the cross products (b - a) x (p - a), (c - b) x (p - b) and
+// (a - c) x (p - c) all point the way n does, compared on the coordinate where n is largest
+// (the other two can be 0 for a triangle seen edge-on). Not watertight: p is rounded, and each
+// triangle rounds its shared edge its own way. Its point's error bound is measured: how far
+// o + t d is from the plane, plus its own rounding.
+bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax,
+                            RayHit *hit) {
+    vec3 a = tri->a, b = tri->b, c = tri->c;
+    vec3 n = Cross(b - a, c - a);
+    real nDotD = Dot(n, ray->dir);
+    if (nDotD == 0 || !std::isfinite(nDotD))
+        return false;
+    real t = Dot(n, a - ray->origin) / nDotD;
+    if (!(t > tMin && t < tMax))
+        return false;
+    vec3 p = ray->origin + t * ray->dir;
+    vec3 size = Abs(n);
+    int k = size.x > size.y ? (size.x > size.z ? 0 : 2) : (size.y > size.z ? 1 : 2);
+    real nk = Component(n, k);
+    if (Component(Cross(b - a, p - a), k) * nk < 0 || Component(Cross(c - b, p - b), k) * nk < 0 ||
+        Component(Cross(a - c, p - c), k) * nk < 0)
+        return false;
+    vec3 unit = SafeNormalize(n);
+    hit->t = t;
+    hit->point = p;
+    real offPlane = std::fabs(Dot(unit, p - a)) + Gamma(4) * (SafeLength(p) + SafeLength(a));
+    hit->pointError = offPlane * Abs(unit) + Gamma(2) * Abs(p);
+    SetFaceNormal(ray, unit, hit);
+    hit->material = tri->material;
+    hit->shape = SHAPE_TRIANGLE;
+    return true;
+}
+
 // The first step of IntersectSphere, small enough to sit inside the shape loop: true if the
 // ray's line misses the sphere. It is the same expression IntersectSphere rejects on (there
 // rescaled by powers of two, which changes no sign), so the two agree, and most spheres a ray
@@ -429,86 +305,104 @@ static inline bool LineMissesSphere(const Sphere *s, const Ray *ray) {
            a * r2 >= std::numeric_limits<real>::min();
 }
 
-static bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, real tMin, real tMax,
-                      RayHit *hit) {
-    return methods.sphere == SPHERE_TEXTBOOK
-               ? IntersectSphereTextbook(s, ray, tMin, tMax, hit)
-               : !LineMissesSphere(s, ray) && IntersectSphere(s, ray, tMin, tMax, hit);
+// One sphere, by the chosen method. The stable test's first step is inlined here: most spheres
+// a ray meets end at it.
+static inline bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, real tMin, real tMax,
+                             RayHit *hit) {
+    if (methods.sphere == SPHERE_TEXTBOOK)
+        return IntersectSphereTextbook(s, ray, tMin, tMax, hit);
+    return !LineMissesSphere(s, ray) && IntersectSphere(s, ray, tMin, tMax, hit);
 }
 
-// The triangle half of the shape loop (HitShapes), for a ray whose main axis is kz.
-template <int kz>
-static bool HitTriangles(const Scene *scene, Methods methods, const Ray *ray, const RayShear *shear,
-                         real tMin, real tMax, bool anyHit, RayHit *hit) {
-    bool found = false;
-    const Triangle *triangles = scene->triangles.data();
-    for (size_t i = 0, n = scene->triangles.size(); i < n; i++) {
-        const Triangle *tri = &triangles[i];
-        if (methods.triangle == TRIANGLE_CRAMER
-                ? IntersectTriangleCramer(tri, ray, tMin, tMax, hit)
-                : !PassesOutside<kz>(tri, shear) &&
-                      IntersectShearedTriangle<kz>(tri, ray, shear, tMin, tMax, hit)) {
-            hit->index = (int)i;
-            tMax = hit->t;
-            found = true;
-            if (anyHit)
-                break;
-        }
-    }
-    return found;
+// One triangle, by the chosen method; the watertight test with the ray's shear, computed once.
+static inline bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray,
+                               const RayShear *shear, real tMin, real tMax, RayHit *hit) {
+    if (methods.triangle == TRIANGLE_CRAMER)
+        return IntersectTriangleCramer(tri, ray, tMin, tMax, hit);
+    if (methods.triangle == TRIANGLE_PLANE)
+        return IntersectTrianglePlane(tri, ray, tMin, tMax, hit);
+    return IntersectWatertight(tri, ray, shear, tMin, tMax, hit);
 }
 
 // The second handout's nearest hit over the list of shapes: every hit shrinks tMax, so each
 // later shape only counts if it is nearer, and a tie keeps the earlier shape. With anyHit, the
-// first hit found ends the search (a shadow ray needs no more).
-static bool HitShapes(const Scene *scene, Methods methods, const Ray *given, real tMin, real tMax,
-                      bool anyHit, RayHit *hit) {
+// first hit found ends the search (a shadow ray needs no more). The shape `start` names (under
+// --self-hit skip, the one the ray leaves) is passed over.
+static bool HitShapes(const Scene *scene, Methods methods, const Ray *given, const RayStart *start,
+                      real tMax, bool anyHit, RayHit *hit) {
     ScaledRay s;
-    if (!ScaleRay(given, tMin, tMax, &s))
+    if (!ScaleRay(given, start->tMin, tMax, &s))
         return false;
     const Ray *ray = s.k == 0 ? given : &s.ray;
+    int skipSphere = start->shape == SHAPE_SPHERE ? start->index : -1;
+    int skipTriangle = start->shape == SHAPE_TRIANGLE ? start->index : -1;
     bool found = false;
-    const Sphere *spheres = scene->spheres.data();
-    for (size_t i = 0, n = scene->spheres.size(); i < n && !(found && anyHit); i++) {
-        if (HitSphere(methods, &spheres[i], ray, s.tMin, s.tMax, hit)) {
-            hit->index = (int)i;
+    for (int i = 0, n = (int)scene->spheres.size(); i < n && !(found && anyHit); i++) {
+        if (i != skipSphere && HitSphere(methods, &scene->spheres[i], ray, s.tMin, s.tMax, hit)) {
+            hit->index = i;
             s.tMax = hit->t;
             found = true;
         }
     }
-    if (!(found && anyHit)) {
-        RayShear shear;
-        ShearRay(ray, &shear);
-        if (shear.kz == 0)
-            found =
-                HitTriangles<0>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, hit) || found;
-        else if (shear.kz == 1)
-            found =
-                HitTriangles<1>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, hit) || found;
-        else
-            found =
-                HitTriangles<2>(scene, methods, ray, &shear, s.tMin, s.tMax, anyHit, hit) || found;
+    RayShear shear;
+    ShearRay(ray, &shear);
+    for (int i = 0, n = (int)scene->triangles.size(); i < n && !(found && anyHit); i++) {
+        if (i != skipTriangle &&
+            HitTriangle(methods, &scene->triangles[i], ray, &shear, s.tMin, s.tMax, hit)) {
+            hit->index = i;
+            s.tMax = hit->t;
+            found = true;
+        }
     }
-    return found && ScaleBack(&s, tMin, tMax, hit);
+    return found && ScaleBack(&s, start->tMin, tMax, hit);
 }
 
 bool FindNearestHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax,
                     RayHit *hit) {
-    return HitShapes(scene, methods, ray, tMin, tMax, false, hit);
+    RayStart start = {tMin, SHAPE_SPHERE, -1};
+    return HitShapes(scene, methods, ray, &start, tMax, false, hit);
 }
 
 bool AnyHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax) {
+    RayStart start = {tMin, SHAPE_SPHERE, -1};
     RayHit scratch;
-    return HitShapes(scene, methods, ray, tMin, tMax, true, &scratch);
+    return HitShapes(scene, methods, ray, &start, tMax, true, &scratch);
 }
 
-// The shadow ray from a hit toward a light: from the safe origin, with dir = light - origin, so
-// t = 1 is the light itself and the open interval (0, 1) holds every possible blocker, however
-// far away the light is. Returns false (and casts nothing) if the light sits within rounding
-// distance of the surface, where dir would be zero and nothing can be in between.
-bool ShadowRay(const RayHit *hit, vec3 lightPosition, Ray *ray) {
-    ray->origin = OffsetRayOrigin(hit, lightPosition - hit->point);
+bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
+                        real tMax, RayHit *hit) {
+    return HitShapes(scene, methods, ray, start, tMax, false, hit);
+}
+
+bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
+                real tMax) {
+    RayHit scratch;
+    return HitShapes(scene, methods, ray, start, tMax, true, &scratch);
+}
+
+void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray, RayStart *start) {
+    *start = kFromTheEye;
+    ray->dir = dir;
+    ray->origin = hit->point;
+    if (methods->selfHit == SELF_HIT_BOUND) {
+        ray->origin = OffsetRayOrigin(hit, dir);
+    } else if (methods->selfHit == SELF_HIT_EPSILON) {
+        start->tMin = methods->epsilon / SafeLength(dir); // epsilon world units along the ray
+    } else {
+        start->shape = hit->shape;
+        start->index = hit->index;
+    }
+}
+
+// The shadow ray: leaves the surface as LeaveSurface says, toward the light, with dir = light -
+// origin, so t = 1 is the light itself and the open interval (tMin, 1) holds every possible
+// blocker, however far away the light is.
+bool ShadowRay(const RayHit *hit, vec3 lightPosition, const Methods *methods, Ray *ray,
+               RayStart *start) {
+    LeaveSurface(hit, lightPosition - hit->point, methods, ray, start);
     ray->dir = lightPosition - ray->origin;
+    if (methods->selfHit == SELF_HIT_EPSILON)
+        start->tMin = methods->epsilon / SafeLength(ray->dir);
     return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
 }
 

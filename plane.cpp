@@ -41,7 +41,6 @@ static dvec3 CrossTerms(dvec3 a, dvec3 b) {
 const double kU = std::numeric_limits<double>::epsilon() / 2;
 static double GammaD(int n) { return n * kU / (1 - n * kU); }
 
-
 // Tier 2 is taken when tier 1's bound is wider than this share of t: then the hit point
 // o + t d, which inherits the error of t, would sit farther off the surface than a few roundings
 // of its coordinates, and probes would print digits that are not known. 32 u of `real` is twice
@@ -207,7 +206,7 @@ static bool FindPlaneT(const PlaneProblem *p, real tMin, real tMax, PlaneT *plan
 // The hit record for a triangle whose interior the ray passes through (the caller has decided
 // that): t from the plane (FindPlaneT). The point is o + t d, which lies on the plane to within
 // its bound: the rounding of o + t d itself, and t's error times |d|.
-bool HitTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit) {
+bool RobustPlaneHit(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit) {
     PlaneProblem p;
     SetUpPlane(tri, ray, &p);
     PlaneT plane;

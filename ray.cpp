@@ -62,8 +62,10 @@ static const char *kUsage =
 struct Options {
     std::string scene = "default", output;
     int width = 0, height = 0, spp = 1, depth = 0, threads = 0;
-    SampleMethod sampling = SAMPLES_GRID;
-    Methods methods = kRobustMethods;
+    int sampling = 0;  // --aa: grid, jitter, adaptive, in SampleMethod's order
+    int methodSet = 0; // --methods: robust, handout
+    int sphere = -1, triangle = -1, selfHit = -1, cameraRay = -1, fresnel = -1; // -1: from the set
+    real epsilon = 0; // --self-hit epsilon=E
     bool stats = false, help = false, version = false;
     bool probeRay = false, pixel = false, view = false, compare = false;
     real probe[6];
@@ -92,6 +94,60 @@ static bool ParseSize(const char *text, Options *opt, std::string *error) {
 }
 
 // One option with its values v[0..]; false with *error if a value is bad.
+// One word of a list: *index is its position. "--sphere must be stable or textbook, not 'x'".
+static bool ParseChoice(const std::string &option, const std::string &word,
+                        std::initializer_list<const char *> words, int *index, std::string *error) {
+    int k = 0;
+    std::string list;
+    for (const char *w : words) {
+        if (word == w) {
+            *index = k;
+            return true;
+        }
+        list += (k == 0 ? "" : k + 1 == (int)words.size() ? " or " : ", ") + std::string(w);
+        k++;
+    }
+    *error = option + " must be " + list + ", not '" + word + "'";
+    return false;
+}
+
+// `--self-hit bound|epsilon[=E]|skip`; E is a distance in world units, > 0 (default 1e-4).
+static bool ParseSelfHit(const std::string &word, Options *opt, std::string *error) {
+    size_t equals = word.find('=');
+    std::string name = word.substr(0, equals);
+    if (!ParseChoice("--self-hit", name, {"bound", "epsilon", "skip"}, &opt->selfHit, error))
+        return false;
+    if (equals == std::string::npos)
+        return true;
+    real e;
+    if (name != "epsilon" || !ParseReal(word.substr(equals + 1), &e, error) || !(e > 0)) {
+        *error =
+            "--self-hit: only epsilon takes a value, a distance > 0, as in epsilon=1e-3 (not '" +
+            word + "')";
+        return false;
+    }
+    opt->epsilon = e;
+    return true;
+}
+
+// The methods the options choose: the set (--methods), then each single-method option given.
+static Methods ChosenMethods(const Options *opt) {
+    Methods m = opt->methodSet == 1 ? kHandoutMethods : kRobustMethods;
+    if (opt->sphere >= 0)
+        m.sphere = (SphereMethod)opt->sphere;
+    if (opt->triangle >= 0)
+        m.triangle = (TriangleMethod)opt->triangle;
+    if (opt->selfHit >= 0)
+        m.selfHit = (SelfHitMethod)opt->selfHit;
+    if (opt->epsilon > 0)
+        m.epsilon = opt->epsilon;
+    if (opt->cameraRay >= 0)
+        m.cameraRay = (CameraRayMethod)opt->cameraRay;
+    if (opt->fresnel >= 0)
+        m.fresnel = (FresnelMethod)opt->fresnel;
+    return m;
+}
+
 static bool ParseOption(const std::string &a, char **v, Options *opt, std::string *error) {
     if (a == "-o")
         opt->output = v[0];
@@ -103,30 +159,21 @@ static bool ParseOption(const std::string &a, char **v, Options *opt, std::strin
         return ParseInt(v[0], 1, 1000, "--depth", &opt->depth, error);
     else if (a == "--threads")
         return ParseInt(v[0], 1, 1024, "--threads", &opt->threads, error);
-    else if (a == "--triangle") {
-        std::string m = v[0];
-        opt->methods.triangle = m == "cramer" ? TRIANGLE_CRAMER : TRIANGLE_WATERTIGHT;
-        if (m != "watertight" && m != "cramer") {
-            *error = "--triangle must be watertight or cramer, not '" + m + "'";
-            return false;
-        }
-    } else if (a == "--aa") {
-        std::string m = v[0];
-        opt->sampling = m == "jitter"     ? SAMPLES_JITTER
-                        : m == "adaptive" ? SAMPLES_ADAPTIVE
-                                          : SAMPLES_GRID;
-        if (m != "grid" && m != "jitter" && m != "adaptive") {
-            *error = "--aa must be grid, jitter or adaptive, not '" + m + "'";
-            return false;
-        }
-    } else if (a == "--sphere") {
-        std::string m = v[0];
-        opt->methods.sphere = m == "textbook" ? SPHERE_TEXTBOOK : SPHERE_STABLE;
-        if (m != "stable" && m != "textbook") {
-            *error = "--sphere must be stable or textbook, not '" + m + "'";
-            return false;
-        }
-    } else if (a == "--view") {
+    else if (a == "--aa")
+        return ParseChoice(a, v[0], {"grid", "jitter", "adaptive"}, &opt->sampling, error);
+    else if (a == "--methods")
+        return ParseChoice(a, v[0], {"robust", "handout"}, &opt->methodSet, error);
+    else if (a == "--sphere")
+        return ParseChoice(a, v[0], {"stable", "textbook"}, &opt->sphere, error);
+    else if (a == "--triangle")
+        return ParseChoice(a, v[0], {"watertight", "cramer", "plane"}, &opt->triangle, error);
+    else if (a == "--camera-ray")
+        return ParseChoice(a, v[0], {"eye", "slides"}, &opt->cameraRay, error);
+    else if (a == "--fresnel")
+        return ParseChoice(a, v[0], {"exact", "schlick"}, &opt->fresnel, error);
+    else if (a == "--self-hit")
+        return ParseSelfHit(v[0], opt, error);
+    else if (a == "--view") {
         opt->view = FindView(v[0], &opt->viewKind);
         if (!opt->view) {
             *error =
@@ -169,10 +216,11 @@ static bool ParseOptions(int argc, char **argv, Options *opt, std::string *error
     static const struct {
         const char *name;
         int values;
-    } kOptions[] = {{"-o", 1},        {"--size", 1},      {"--spp", 1},      {"--depth", 1},
-                    {"--threads", 1}, {"--aa", 1},        {"--triangle", 1}, {"--sphere", 1},
-                    {"--view", 1},    {"--ray", 6},       {"--rays", 1},     {"--pixel", 2},
-                    {"--compare", 2}, {"--tolerance", 1}, {"--stats", 0},    {"--help", 0},
+    } kOptions[] = {{"-o", 1},        {"--size", 1},      {"--spp", 1},        {"--depth", 1},
+                    {"--threads", 1}, {"--aa", 1},        {"--triangle", 1},   {"--sphere", 1},
+                    {"--methods", 1}, {"--self-hit", 1},  {"--camera-ray", 1}, {"--fresnel", 1},
+                    {"--view", 1},    {"--ray", 6},       {"--rays", 1},       {"--pixel", 2},
+                    {"--compare", 2}, {"--tolerance", 1}, {"--stats", 0},      {"--help", 0},
                     {"-h", 0},        {"--version", 0}};
     bool sceneGiven = false;
     std::string seen; // the options given so far, each between spaces
@@ -373,11 +421,11 @@ static int Run(int argc, char **argv) {
     settings.width = opt.width ? opt.width : scene.width;
     settings.height = opt.height ? opt.height : scene.height;
     settings.samplesPerPixel = opt.spp;
-    settings.sampling = opt.sampling;
+    settings.sampling = (SampleMethod)opt.sampling;
     settings.depth = opt.depth ? opt.depth : scene.depth;
     unsigned hardware = std::thread::hardware_concurrency();
     settings.threads = opt.threads ? opt.threads : (hardware ? (int)hardware : 1);
-    settings.methods = opt.methods;
+    settings.methods = ChosenMethods(&opt);
     settings.showProgress = true;
     PlanRender(&scene, &settings);
 

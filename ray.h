@@ -58,6 +58,8 @@ inline vec3 Cross(vec3 a, vec3 b) {
 }
 inline real Length(vec3 a) { return std::sqrt(Dot(a, a)); }
 inline vec3 Normalize(vec3 a) { return (1 / Length(a)) * a; }
+// The mirror direction of d about the unit normal n: r = d - 2 (d.n) n (the assignment handout)
+inline vec3 Reflect(vec3 d, vec3 n) { return d - (2 * Dot(d, n)) * n; }
 inline vec3 Abs(vec3 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
 inline vec3 Max(vec3 a, vec3 b) {
     return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)};
@@ -196,6 +198,8 @@ struct Camera {
                              // does not depend on how far the eye is from the origin
     vec3 from, to, up;       // CAMERA_LOOKAT
     real fovDegrees;         // CAMERA_LOOKAT: vertical field of view
+    bool fromScreen;         // the slides' GetRay: rays start at the pixel on the screen, with
+                             // unit length (set by PlanRender from the methods)
 };
 
 enum ShapeKind { SHAPE_SPHERE, SHAPE_TRIANGLE };
@@ -263,21 +267,46 @@ struct Scene {
     std::vector<Light> lights;
 };
 
-// Which ray/shape routines FindNearestHit and AnyHit use: the robust defaults, or the handout's
-// and the textbook's forms, kept to teach with and to show in `make bench` what they cost.
-enum TriangleMethod {
-    TRIANGLE_WATERTIGHT, // Woop, Benthin & Wald 2013 (the default)
-    TRIANGLE_CRAMER      // the handout's Cramer's rule with variables A..M
-};
+// The numerical methods of a render: the robust defaults, or each method the course documents
+// describe, as a careful student writes it (`--methods handout`), to teach with and to show in
+// `make bench` what each robust step costs and buys. Every combination renders; each method
+// brings its own honest way of leaving a surface (SelfHitMethod).
 enum SphereMethod {
-    SPHERE_STABLE,  // Ray Tracing Gems ch. 7 (the default)
-    SPHERE_TEXTBOOK // (-b -+ sqrt(b^2 - ac)) / a, for the benchmark only
+    SPHERE_STABLE,  // Ray Tracing Gems ch. 7: no cancellation (the default)
+    SPHERE_TEXTBOOK // the assignment handout's A, B, C and discriminant B^2 - 4AC
+};
+enum TriangleMethod {
+    TRIANGLE_WATERTIGHT, // Woop, Benthin & Wald 2013, t from the plane (the default)
+    TRIANGLE_CRAMER,     // the assignment handout's Cramer's rule with variables A..M
+    TRIANGLE_PLANE       // the second handout's: the plane's t, then the cross products' signs
+};
+// How a ray that leaves a surface (shadow, reflection, refraction) keeps from hitting it again.
+enum SelfHitMethod {
+    SELF_HIT_BOUND,   // start off the surface by the hit point's error bound (the default)
+    SELF_HIT_EPSILON, // ignore hits closer than `epsilon` world units (the usual student fix)
+    SELF_HIT_SKIP     // ignore the shape the ray leaves (the second handout's rule)
+};
+// Where a primary ray starts (`GetRay`).
+enum CameraRayMethod {
+    CAMERA_RAY_EYE,   // at the eye, direction eye -> pixel, not normalised (the second handout)
+    CAMERA_RAY_SLIDES // at the pixel's point on the screen, unit direction (the slides)
+};
+enum FresnelMethod {
+    FRESNEL_EXACT,  // the exact dielectric reflectance (the default)
+    FRESNEL_SCHLICK // Schlick's approximation, as Ray Tracing in One Weekend uses it
 };
 struct Methods {
     SphereMethod sphere;
     TriangleMethod triangle;
+    SelfHitMethod selfHit;
+    real epsilon; // SELF_HIT_EPSILON's distance, in world units along the ray
+    CameraRayMethod cameraRay;
+    FresnelMethod fresnel;
 };
-const Methods kRobustMethods = {SPHERE_STABLE, TRIANGLE_WATERTIGHT};
+const Methods kRobustMethods = {SPHERE_STABLE, TRIANGLE_WATERTIGHT, SELF_HIT_BOUND,
+                                real(1e-4),    CAMERA_RAY_EYE,      FRESNEL_EXACT};
+const Methods kHandoutMethods = {SPHERE_TEXTBOOK, TRIANGLE_CRAMER,   SELF_HIT_EPSILON,
+                                 real(1e-4),      CAMERA_RAY_SLIDES, FRESNEL_SCHLICK};
 
 // Which effects a render can need, decided once per render from the scene and the settings
 // (PlanEffects); the shading code skips whole paths for the absent ones.
@@ -373,11 +402,22 @@ bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tM
 bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit);
 bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                              RayHit *hit);
+bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit);
 
 // The hit record of a triangle whose interior the ray passes through (plane.cpp): t from the
 // triangle's plane, accurate for triangles of any length, and the point o + t d; false if t is
 // outside (tMin, tMax) or within its rounding error of 0 (the ray has just left this plane).
-bool HitTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit);
+bool RobustPlaneHit(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit);
+
+// What a ray must not count as a hit besides t outside its interval: hits at t <= tMin, and the
+// shape it leaves (index -1: none). Set by LeaveSurface and ShadowRay from the self-hit method;
+// a ray from the eye starts kFromTheEye.
+struct RayStart {
+    real tMin;
+    ShapeKind shape;
+    int index;
+};
+const RayStart kFromTheEye = {0, SHAPE_SPHERE, -1};
 
 // The nearest hit over every shape of the scene with t in (tMin, tMax): the one loop that serves
 // primary, reflection and refraction rays.
@@ -387,23 +427,53 @@ bool FindNearestHit(const Scene *scene, Methods methods, const Ray *ray, real tM
 // True if any shape is hit with t in (tMin, tMax); stops at the first. Serves shadow rays.
 bool AnyHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax);
 
+// The same two questions for a ray that starts as `start` says, with t in (start->tMin, tMax).
+bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
+                        real tMax, RayHit *hit);
+bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
+                real tMax);
+
 // The origin for a ray leaving hit->point in direction dir: the point pushed off the surface by
 // its own error bound, to the side dir goes, so the new ray cannot hit the surface it leaves.
 vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir);
 
-// The shadow ray from a hit to a light at lightPosition: safe origin, t = 1 at the light, so a
-// blocker is any hit in (0, 1). False if the light is within rounding distance of the surface.
-bool ShadowRay(const RayHit *hit, vec3 lightPosition, Ray *ray);
+// The ray that leaves a hit in direction dir, and what it must not hit, by the self-hit method:
+// bound, from OffsetRayOrigin; epsilon, from the hit point, ignoring hits closer than
+// methods->epsilon; skip, from the hit point, ignoring the shape it leaves.
+void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray, RayStart *start);
+
+// The shadow ray from a hit to a light at lightPosition, leaving the surface as LeaveSurface
+// does, with t = 1 at the light, so a blocker is any hit in (start->tMin, 1). False if the light
+// is where the ray starts, where nothing can be in between.
+bool ShadowRay(const RayHit *hit, vec3 lightPosition, const Methods *methods, Ray *ray,
+               RayStart *start);
+
+// ---- watertight.cpp: the watertight triangle test ----------------------------------------------
+
+// The per-ray half of the watertight test, shared by every triangle the ray meets: kz, the axis
+// of the direction's largest component, renamed z; the ray origin with its axes renamed
+// (kz + 1, kz + 2, kz); and the shear that turns the direction into the +z axis.
+struct RayShear {
+    int kz;
+    vec3 origin;
+    real sx, sy; // d[kx]/d[kz] and d[ky]/d[kz]
+};
+void ShearRay(const Ray *ray, RayShear *shear);
+
+// The watertight test of one triangle for a ray whose shear is computed: as IntersectTriangle.
+bool IntersectWatertight(const Triangle *tri, const Ray *ray, const RayShear *shear, real tMin,
+                         real tMax, RayHit *hit);
 
 // ---- shade.cpp: lighting and the ray chain ---------------------------------------------------
 
 // Decides which effects a render of this scene with these settings can need (see Effects).
 void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects);
 
-// Colour seen along `ray`, a ray of the given kind at `chain` in its chain. Counts it, and
-// every ray it leads to, in log->stats (and records them in log->tree if that is set).
+// Colour seen along `ray`, a ray of the given kind at `chain` in its chain, starting as `start`
+// says (kFromTheEye for a primary ray). Counts it, and every ray it leads to, in log->stats (and
+// records them in log->tree if that is set).
 color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
-               RayChain chain, TraceLog *log);
+               const RayStart *start, RayChain chain, TraceLog *log);
 
 // Snell's law for unit d against the unit normal n (d.n <= 0), eta = n1 / n2. Writes the unit
 // refracted direction to *t and returns true, or returns false for total internal reflection.
@@ -412,6 +482,10 @@ bool Refract(vec3 d, vec3 n, real eta, vec3 *t);
 // Exact Fresnel reflectance of unpolarised light for cos(incident angle), eta = n1 / n2;
 // 1 under total internal reflection.
 real FresnelReflectance(real cosI, real eta);
+
+// Schlick's approximation of it, R0 + (1 - R0)(1 - cos(i))^5 with R0 = ((1 - eta)/(1 + eta))^2, as
+// Ray Tracing in One Weekend computes it; 1 under total internal reflection.
+real SchlickReflectance(real cosI, real eta);
 
 // ---- render.cpp: the camera and the render loop ------------------------------------------------
 

@@ -36,11 +36,19 @@ void GetScreenRay(const Camera *camera, int width, int height, vec2 screenCoord,
     ray->dir = camera->toCorner + across * camera->horizontal + up * camera->vertical;
 }
 
+// The slides' GetRay (`--methods handout`): Position = the pixel's point on the screen,
+// Vector = normalize(pixel - camera). rt's own starts at the eye with the unnormalised vector
+// eye -> pixel (the second handout's form): t = 1 is then the screen, and a shape between the eye
+// and the screen is still seen.
 void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray) {
     if (camera->kind == CAMERA_PERSPECTIVE)
         GetRay(camera->perspective, screenCoord, ray);
     else
         GetScreenRay(camera, width, height, screenCoord, ray);
+    if (camera->fromScreen) {
+        ray->origin = ray->origin + ray->dir;
+        ray->dir = SafeNormalize(ray->dir);
+    }
 }
 
 // An orthonormal frame at the eye: w points back from the view, u right, v up (FCG §4.3). The
@@ -103,6 +111,7 @@ void PlanRender(const Scene *scene, RenderSettings *settings) {
     if (scene->camera.kind == CAMERA_LOOKAT) // checked when the scene was read
         LookAtToScreen(&scene->camera, settings->width, settings->height, &settings->camera,
                        &unused);
+    settings->camera.fromScreen = settings->methods.cameraRay == CAMERA_RAY_SLIDES;
 }
 
 uint8_t ToByte(real c) {
@@ -172,7 +181,7 @@ static color TraceSample(const Scene *scene, const RenderSettings *settings, vec
                          TraceLog *log) {
     Ray ray;
     GetCameraRay(&settings->camera, settings->width, settings->height, position, &ray);
-    return TraceRay(scene, settings, RAY_PRIMARY, &ray, RayChain{1, 1}, log);
+    return TraceRay(scene, settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, log);
 }
 
 // Whether samples differ, in any channel clamped to [0, 1], by more than kAdaptiveContrast.

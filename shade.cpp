@@ -3,7 +3,7 @@
 // The assignment handout's diffuse shading with an ambient floor, hard shadows and mirrors; the
 // second handout's Phong lighting; the journal's refraction by Snell's law with Fresnel
 // weighting. At most `depth` rays in a chain (then black), the background on a miss. Every ray
-// asks the scene one of two questions of geometry.cpp: FindNearestHit or AnyHit.
+// asks the scene one of two questions of geometry.cpp: FindNearestHitFrom or AnyHitFrom.
 #include "ray.h"
 
 #include <algorithm>
@@ -48,16 +48,18 @@ static int RecordRay(RayKind kind, const Ray *ray, TraceLog *log) {
 static bool LightIsVisible(const Scene *scene, const RenderSettings *settings, const RayHit *hit,
                            const Light *light, TraceLog *log) {
     Ray shadow;
-    if (!settings->effects.shadows || !ShadowRay(hit, light->position, &shadow))
+    RayStart start;
+    if (!settings->effects.shadows ||
+        !ShadowRay(hit, light->position, &settings->methods, &shadow, &start))
         return true;
     log->stats.shadow++;
     if (!log->tree)
-        return !AnyHit(scene, settings->methods, &shadow, 0, 1);
+        return !AnyHitFrom(scene, settings->methods, &shadow, &start, 1);
 
     // Recording a ray tree: find the nearest blocker, so the tree can show which shape it is
     int node = RecordRay(RAY_SHADOW, &shadow, log);
     RayNode *n = &(*log->tree)[node];
-    n->hit = FindNearestHit(scene, settings->methods, &shadow, 0, 1, &n->record);
+    n->hit = FindNearestHitFrom(scene, settings->methods, &shadow, &start, 1, &n->record);
     n->light = n->hit ? color{0, 0, 0} : light->intensity;
     return !n->hit;
 }
@@ -157,6 +159,21 @@ real FresnelReflectance(real cosI, real eta) {
     return (rs * rs + rp * rp) / 2;
 }
 
+// Schlick, "An Inexpensive BRDF Model for Physically-based Rendering", Computer Graphics Forum
+// 13(3), 1994: the exact curve replaced by a fifth power between R0 at normal incidence and 1 at
+// grazing. Ray Tracing in One Weekend (§11.4) uses it on both sides of the surface, with the
+// incident cosine; inside glass it then misses the rise to 1 before the critical angle, which
+// the total internal reflection test supplies.
+real SchlickReflectance(real cosI, real eta) {
+    cosI = std::min(real(1), std::max(real(0), cosI));
+    real cosT;
+    if (!RefractedCosine(cosI, eta, &cosT))
+        return 1;
+    real r0 = (1 - eta) / (1 + eta);
+    r0 = r0 * r0;
+    return r0 + (1 - r0) * std::pow(1 - cosI, real(5));
+}
+
 // Sends the next ray of the chain from the hit point in direction dir, if it is allowed: its
 // number must not pass `depth`, and its colour, counted with `share` (the mirror fraction or
 // the Fresnel weight), must be able to change the pixel (kMinRayWeight). Otherwise black.
@@ -165,8 +182,10 @@ static color FollowRay(const Scene *scene, const RenderSettings *settings, RayKi
     RayChain next = {chain.number + 1, chain.weight * share};
     if (next.number > settings->depth || next.weight < kMinRayWeight)
         return {0, 0, 0};
-    Ray ray = {OffsetRayOrigin(hit, dir), dir};
-    return TraceRay(scene, settings, kind, &ray, next, log);
+    Ray ray;
+    RayStart start;
+    LeaveSurface(hit, dir, &settings->methods, &ray, &start);
+    return TraceRay(scene, settings, kind, &ray, &start, next, log);
 }
 
 // Clear glass: Fresnel's share R of the reflected ray plus 1 - R of the refracted one. Entering
@@ -176,8 +195,10 @@ static color GlassColor(const Scene *scene, const RenderSettings *settings, cons
                         const RayHit *hit, const Material *m, RayChain chain, TraceLog *log) {
     vec3 d = SafeNormalize(ray->dir), n = hit->normal;
     real eta = hit->frontFace ? 1 / m->ior : m->ior;
-    real reflectance = FresnelReflectance(-Dot(d, n), eta);
-    vec3 mirrored = d - (2 * Dot(d, n)) * n;
+    real reflectance = settings->methods.fresnel == FRESNEL_SCHLICK
+                           ? SchlickReflectance(-Dot(d, n), eta)
+                           : FresnelReflectance(-Dot(d, n), eta);
+    vec3 mirrored = Reflect(d, n);
     color result = reflectance * FollowRay(scene, settings, RAY_REFLECTION, hit, mirrored,
                                            reflectance, chain, log);
     vec3 refracted;
@@ -207,8 +228,7 @@ static color ShadeHit(const Scene *scene, const RenderSettings *settings, const 
     if (m->mirror < 1)
         result = (1 - m->mirror) * SurfaceColor(scene, settings, ray, hit, m, chain, log);
     if (m->mirror > 0) {
-        // Mirror reflection of the incoming direction: r = d - 2 (d.N) N (handout)
-        vec3 r = ray->dir - (2 * Dot(ray->dir, hit->normal)) * hit->normal;
+        vec3 r = Reflect(ray->dir, hit->normal);
         result = result + m->mirror * FollowRay(scene, settings, RAY_REFLECTION, hit, r, m->mirror,
                                                 chain, log);
     }
@@ -221,11 +241,11 @@ static void CountRay(RayKind kind, RayStats *stats) {
 }
 
 color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
-               RayChain chain, TraceLog *log) {
+               const RayStart *start, RayChain chain, TraceLog *log) {
     CountRay(kind, &log->stats);
     int node = RecordRay(kind, ray, log);
     RayHit hit;
-    bool found = FindNearestHit(scene, settings->methods, ray, 0, kInfinity, &hit);
+    bool found = FindNearestHitFrom(scene, settings->methods, ray, start, kInfinity, &hit);
     color result = scene->background;
     if (found) {
         int parent = log->current;

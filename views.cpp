@@ -55,8 +55,9 @@ static color ShadowMask(const Scene *scene, const RenderSettings *settings, cons
             continue;
         }
         Ray shadow;
-        bool blocked = ShadowRay(hit, light.position, &shadow) &&
-                       AnyHit(scene, settings->methods, &shadow, 0, 1);
+        RayStart start;
+        bool blocked = ShadowRay(hit, light.position, &settings->methods, &shadow, &start) &&
+                       AnyHitFrom(scene, settings->methods, &shadow, &start, 1);
         sum = sum + (blocked ? color{1, 0, 0} : color{1, 1, 1});
     }
     return scene->lights.empty() ? sum : (real(1) / scene->lights.size()) * sum;
@@ -71,7 +72,7 @@ static color ViewValue(const Scene *scene, const RenderSettings *settings, ViewK
     if (view == VIEW_COST) {
         RayStats stats = {0, 0, 0, 0, 0};
         TraceLog log = {stats, nullptr, -1};
-        TraceRay(scene, settings, RAY_PRIMARY, &ray, RayChain{1, 1}, &log);
+        TraceRay(scene, settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
         *scalar = real(log.stats.primary + log.stats.shadow + log.stats.reflection +
                        log.stats.refraction);
         return {0, 0, 0};

@@ -264,7 +264,7 @@ static int TimeProcess(char **command) {
 }
 
 int ReportMain(const std::string &dir); // report.cpp
-int RobustnessTables();                  // robustness.cpp
+int RobustnessTables();                 // robustness.cpp
 
 int main(int argc, char **argv) {
     std::string mode = argc > 1 ? argv[1] : "";

@@ -29,7 +29,7 @@ static bool RenderTiny(const Scene *scene, std::string *why) {
             TraceLog log = {RayStats{0, 0, 0, 0, 0}, &tree, -1};
             Ray ray;
             GetCameraRay(&settings.camera, 4, 4, SamplePosition(i, j, 0, 1), &ray);
-            TraceRay(scene, &settings, RAY_PRIMARY, &ray, RayChain{1, 1}, &log);
+            TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
             if (!TreeIsFinite(tree, why)) {
                 *why = "pixel (" + std::to_string(i) + ", " + std::to_string(j) + "): " + *why;
                 return false;

@@ -352,7 +352,9 @@ static int SelfShadowed(const Suite *s, const Triangle &ground, vec3 eye, vec3 l
         if (!s->triangle(&ground, &ray, 0, kInfinity, &hit))
             continue;
         Ray shadow;
-        acne += ShadowRay(&hit, light, &shadow) && s->triangle(&ground, &shadow, 0, 1, &hit);
+        RayStart start;
+        acne += ShadowRay(&hit, light, &kRobustMethods, &shadow, &start) &&
+                s->triangle(&ground, &shadow, 0, 1, &hit);
     }
     return acne;
 }
@@ -397,7 +399,8 @@ static void OffsetRows(Suite *s) {
         RayHit p, blocker;
         bool found = s->triangle(&ground, &up, 0, kInfinity, &p);
         Ray shadow;
-        found = found && ShadowRay(&p, light, &shadow);
+        RayStart start;
+        found = found && ShadowRay(&p, light, &kRobustMethods, &shadow, &start);
         bool ballShadows = found && s->sphere(&ball, &shadow, 0, 1, &blocker);
         bool sheetShadows = found && s->triangle(&sheet, &shadow, 0, 1, &blocker);
         Report(s, "OFF-3", ballShadows && sheetShadows,
@@ -417,8 +420,10 @@ static void OffsetRows(Suite *s) {
                     !(Dot(hit.normal, light - hit.point) > 0))
                     continue;
                 Ray shadow;
+                RayStart start;
                 rays++;
-                acne += ShadowRay(&hit, light, &shadow) && s->sphere(&ball, &shadow, 0, 1, &again);
+                acne += ShadowRay(&hit, light, &kRobustMethods, &shadow, &start) &&
+                        s->sphere(&ball, &shadow, 0, 1, &again);
             }
         Report(s, "OFF-4", acne == 0 && rays > 1000,
                std::to_string(acne) + " of " + std::to_string(rays) +

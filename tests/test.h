@@ -71,5 +71,6 @@ void TestStability();
 void TestLongTriangles();
 void TestRanges();
 void TestFiles();
+void TestMethods();
 
 #endif

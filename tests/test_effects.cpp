@@ -125,7 +125,7 @@ static std::vector<RayNode> GlassTree(vec3 origin, vec3 dir) {
     std::vector<RayNode> tree;
     TraceLog log = {RayStats{0, 0, 0, 0, 0}, &tree, -1};
     Ray ray = {origin, dir};
-    TraceRay(&scene, &s, RAY_PRIMARY, &ray, RayChain{1, 1}, &log);
+    TraceRay(&scene, &s, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
     return tree;
 }
 
@@ -212,7 +212,7 @@ static color PhongAt(vec3 eye, vec3 lightPosition, real shininess, RayStats *sta
     RenderSettings s = TestSettings(&scene);
     TraceLog log = {RayStats{0, 0, 0, 0, 0}, nullptr, -1};
     Ray ray = {eye, vec3{0, 0, 0} - eye};
-    color c = TraceRay(&scene, &s, RAY_PRIMARY, &ray, RayChain{1, 1}, &log);
+    color c = TraceRay(&scene, &s, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
     *stats = log.stats;
     return c;
 }

@@ -73,6 +73,7 @@ int main() {
     TestLongTriangles();
     TestRanges();
     TestFiles();
+    TestMethods();
     TestSceneFiles();
     TestProbes();
     TestProgram();

@@ -163,7 +163,8 @@ static void TestFarLight() {
     for (real x : {real(0), real(500)}) {
         TraceLog log = {RayStats{0, 0, 0, 0, 0}, nullptr, -1};
         Ray ray = {{x, 50, 30}, {0, -50, -30}};
-        color c = read ? TraceRay(&scene, &settings, RAY_PRIMARY, &ray, RayChain{1, 1}, &log)
+        color c = read ? TraceRay(&scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye,
+                                  RayChain{1, 1}, &log)
                        : color{-1, -1, -1};
         (x == 0 ? shadow : lit) = c.x;
     }

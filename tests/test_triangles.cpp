@@ -217,6 +217,7 @@ static void TestQuickRejectChangesNothing() {
 void TestTriangles() {
     TestTriangleTable(IntersectTriangle, "watertight");
     TestTriangleTable(IntersectTriangleCramer, "Cramer");
+    TestTriangleTable(IntersectTrianglePlane, "plane");
     TestMethodsAgree();
     TestFanIsWatertight();
     TestDegenerateTriangle();
