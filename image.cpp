@@ -63,11 +63,12 @@ static bool EndsWith(const std::string &s, const char *suffix) {
     return true;
 }
 
-// Written to directly, never replaced: what is not a regular file (/dev/null, a FIFO), and any
-// path under /dev (/dev/stdout is a regular file when standard output is redirected to one,
-// and replacing that file would not reach the program's standard output).
+// Written to directly, never replaced: what is not a regular file (/dev/null, a FIFO), and the
+// names of the program's own streams (/dev/stdout is a link to the file standard output goes to,
+// which replacing would not reach).
 static bool IsSpecial(const std::string &path, const struct stat *info) {
-    return !S_ISREG(info->st_mode) || path.compare(0, 5, "/dev/") == 0;
+    return !S_ISREG(info->st_mode) || path.compare(0, 8, "/dev/std") == 0 ||
+           path.compare(0, 8, "/dev/fd/") == 0 || path.compare(0, 14, "/proc/self/fd/") == 0;
 }
 
 bool CheckOutputPath(const std::string &output, const std::vector<std::string> &inputs, int *status,
@@ -104,15 +105,18 @@ bool CheckOutputPath(const std::string &output, const std::vector<std::string> &
     return true;
 }
 
-// Signals that stop a run. They are held while a temporary file exists, so that an interrupted
-// run cannot leave one behind: a signal that arrives meanwhile is delivered once the temporary
-// file is gone, and the output path is left as it was.
+// Signals whose default is to stop the program. They are held while a temporary file exists, so
+// that an interrupted run cannot leave one behind: a signal that arrives meanwhile is delivered
+// once the temporary file is gone, and the output path is left as it was. (SIGKILL cannot be
+// held; nothing can clean up after it.)
+static const int kStopSignals[] = {SIGINT,  SIGTERM, SIGHUP,  SIGQUIT, SIGPIPE,
+                                   SIGUSR1, SIGUSR2, SIGALRM, SIGXCPU, SIGVTALRM};
+
 static void HoldStopSignals(sigset_t *previous) {
     sigset_t stops;
     sigemptyset(&stops);
-    sigaddset(&stops, SIGINT);
-    sigaddset(&stops, SIGTERM);
-    sigaddset(&stops, SIGHUP);
+    for (int signal : kStopSignals)
+        sigaddset(&stops, signal);
     pthread_sigmask(SIG_BLOCK, &stops, previous);
 }
 
@@ -121,7 +125,7 @@ static void HoldStopSignals(sigset_t *previous) {
 static bool StopSignalPending() {
     sigset_t pending;
     sigpending(&pending);
-    for (int signal : {SIGINT, SIGTERM, SIGHUP}) {
+    for (int signal : kStopSignals) {
         struct sigaction action;
         if (sigismember(&pending, signal) && sigaction(signal, nullptr, &action) == 0 &&
             action.sa_handler != SIG_IGN)
@@ -152,17 +156,37 @@ static bool WriteSpecial(const std::string &path, const Image *image, std::strin
     return written;
 }
 
+// The file a path names, following symbolic links, also one whose target does not exist yet
+// (a dangling link is followed to where its target will be made). At most 40 links deep.
+static std::string LinkTarget(std::string path) {
+    for (int depth = 0; depth < 40; depth++) {
+        char target[PATH_MAX];
+        ssize_t n = readlink(path.c_str(), target, sizeof target - 1);
+        if (n < 0)
+            return path;
+        target[n] = 0;
+        std::string next = target;
+        size_t slash = path.find_last_of('/');
+        path =
+            next[0] == '/' || slash == std::string::npos ? next : path.substr(0, slash + 1) + next;
+    }
+    return path;
+}
+
 bool WriteImage(const char *path, const Image *image, std::string *error) {
     struct stat info;
     bool exists = stat(path, &info) == 0;
     if (exists && IsSpecial(path, &info))
         return WriteSpecial(path, image, error);
 
-    // A symbolic link is followed: the file it points to is replaced, the link stays
-    char resolved[PATH_MAX];
-    std::string target = exists && realpath(path, resolved) ? resolved : path;
-    std::string temporary = target + ".XXXXXX", why;
+    // A symbolic link is followed: the file it points to is replaced (or made), the link stays
+    std::string target = LinkTarget(path), why;
+    std::string folder = target.substr(0, target.find_last_of('/') + 1);
+    std::string temporary = folder + ".ray-XXXXXX"; // short: any name that fits, fits beside it
     sigset_t previous;
+    struct sigaction fileSize, ignore = {};
+    ignore.sa_handler = SIG_IGN;
+    sigaction(SIGXFSZ, &ignore, &fileSize); // over a file-size limit: EFBIG, not a dead process
     HoldStopSignals(&previous);
     int fd = mkstemp(&temporary[0]);
     FILE *file = fd >= 0 ? fdopen(fd, "wb") : nullptr;
@@ -194,6 +218,7 @@ bool WriteImage(const char *path, const Image *image, std::string *error) {
     if (!written && fd >= 0)
         unlink(temporary.c_str());
     pthread_sigmask(SIG_SETMASK, &previous, nullptr); // a held signal is delivered here
+    sigaction(SIGXFSZ, &fileSize, nullptr);
     if (!written)
         *error = std::string(path) + ": " + why;
     return written;

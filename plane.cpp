@@ -84,11 +84,11 @@ static Wide Neg(Wide x) { return {-x.hi, -x.lo}; }
 struct Wide3 {
     Wide x, y, z;
 };
-// a - b exactly, per component, then times 2^k (exact)
-static Wide3 ExactDifference(dvec3 a, dvec3 b, double scale) {
+// a - b exactly, per component, then times 2^k (exact unless the low part is subnormal)
+static Wide3 ExactDifference(dvec3 a, dvec3 b, int k) {
     Wide x = TwoSum(a.x, -b.x), y = TwoSum(a.y, -b.y), z = TwoSum(a.z, -b.z);
-    return {
-        {scale * x.hi, scale * x.lo}, {scale * y.hi, scale * y.lo}, {scale * z.hi, scale * z.lo}};
+    auto scaled = [k](Wide w) { return Wide{std::ldexp(w.hi, k), std::ldexp(w.lo, k)}; };
+    return {scaled(x), scaled(y), scaled(z)};
 }
 static Wide WideDot(Wide3 a, Wide3 b) {
     return Add(Add(Mul(a.x, b.x), Mul(a.y, b.y)), Mul(a.z, b.z));
@@ -101,12 +101,12 @@ static Wide3 WideCross(Wide3 a, Wide3 b) {
 // ---- the two tiers ------------------------------------------------------------------------
 
 // The triangle and the ray in double: corner a, the exact edges' operands, the edges as tier 1
-// rounds them (times `scale`, a power of two that keeps a triangle of size 1e-200 or 1e200 from
-// a normal that under- or overflows; n only matters up to its length), the ray.
+// rounds them (times 2^scale, which keeps a triangle of size 1e-200 or 1e200 from a normal that
+// under- or overflows; n only matters up to its length), the ray.
 struct PlaneProblem {
     dvec3 a, b, c; // corners
-    double scale;  // 2^k, applied to the edges
-    dvec3 e1, e2;  // (b - a) scale and (c - a) scale, rounded
+    int scale;     // the edges are multiplied by 2^scale
+    dvec3 e1, e2;  // (b - a) 2^scale and (c - a) 2^scale, rounded
     dvec3 n;       // e1 x e2, rounded
     dvec3 nTerms;  // the sizes of the products in each component of n (CrossTerms)
     dvec3 origin, dir;
@@ -146,7 +146,7 @@ static double PlainError(const PlaneProblem *p, dvec3 toA, double t, double deno
 // two sums to double and dividing adds 3 u of t.
 static PlaneT WidePlaneT(const PlaneProblem *p) {
     Wide3 e1 = ExactDifference(p->b, p->a, p->scale), e2 = ExactDifference(p->c, p->a, p->scale);
-    Wide3 n = WideCross(e1, e2), toA = ExactDifference(p->a, p->origin, 1);
+    Wide3 n = WideCross(e1, e2), toA = ExactDifference(p->a, p->origin, 0);
     Wide3 d = {{p->dir.x, 0}, {p->dir.y, 0}, {p->dir.z, 0}};
     Wide numerator = WideDot(n, toA), denominator = WideDot(n, d);
     double t = numerator.hi / denominator.hi;
@@ -161,20 +161,22 @@ static PlaneT WidePlaneT(const PlaneProblem *p) {
 }
 
 // The edges and normal of tier 1. The edges are scaled by a power of two when they lie outside
-// 2^+-64, so that n is within 2^+-130 of 1 (less for a sliver) and n.(a - o) cannot over- or
-// underflow for any a - o that is itself a number; the power is clamped to 2^+-1000, which a
-// double holds: edges of 1e-310 then become 1e-9, far from underflow.
+// 2^+-64, so that the longer one's largest component is in [1, 2): n is then at most 8 (less for a
+// sliver), and n.(a - o) over- or underflows only where a - o itself nearly does. ldexp scales by
+// any power, in exact steps.
 static void SetUpPlane(const Triangle *tri, const Ray *ray, PlaneProblem *p) {
     p->a = Widen(tri->a), p->b = Widen(tri->b), p->c = Widen(tri->c);
     p->origin = Widen(ray->origin), p->dir = Widen(ray->dir);
     p->e1 = Sub(p->b, p->a), p->e2 = Sub(p->c, p->a);
     dvec3 m1 = AbsD(p->e1), m2 = AbsD(p->e2);
     double m = std::max({m1.x, m1.y, m1.z, m2.x, m2.y, m2.z});
-    p->scale = 1;
+    p->scale = 0; // no scaling
     if (!(m >= 0x1p-64 && m <= 0x1p64) && m > 0 && std::isfinite(m)) {
-        int k = -std::ilogb(m);
-        p->scale = std::ldexp(1.0, k < -1000 ? -1000 : k > 1000 ? 1000 : k);
-        p->e1 = Scale(p->scale, p->e1), p->e2 = Scale(p->scale, p->e2);
+        p->scale = -std::ilogb(m);
+        p->e1 = {std::ldexp(p->e1.x, p->scale), std::ldexp(p->e1.y, p->scale),
+                 std::ldexp(p->e1.z, p->scale)};
+        p->e2 = {std::ldexp(p->e2.x, p->scale), std::ldexp(p->e2.y, p->scale),
+                 std::ldexp(p->e2.z, p->scale)};
     }
     dvec3 e1 = p->e1, e2 = p->e2;
     double yz = e1.y * e2.z, zy = e1.z * e2.y, zx = e1.z * e2.x, xz = e1.x * e2.z;
@@ -184,21 +186,22 @@ static void SetUpPlane(const Triangle *tri, const Ray *ray, PlaneProblem *p) {
                  std::fabs(xy) + std::fabs(yx)};
 }
 
-// The plane's t for a ray whose line passes inside the triangle, and whether it counts: below
-// tMax (compared as rounded, like every t in the nearest-hit loop: an error there only swaps two
-// surfaces within rounding of each other), and above both tMin and its own error bound, so a
-// ray that starts on this plane, having just left it, does not hit it again. When tier 1's bound
-// cannot settle that, or is wider than kPlainRelativeError of t, tier 2 decides.
+// The plane's t for a ray whose line passes inside the triangle, and whether it counts: in
+// (tMin, tMax), and above its own error bound, so a ray that starts on this plane, having just
+// left it, does not hit it again. Tier 1's t decides alone only where its bound puts it clearly
+// outside (tMin, tMax), or clearly inside and within kPlainRelativeError of itself: a long
+// triangle's plain t can be off by far more than rounding, enough to put a floor behind a shape
+// just beyond it. Everything else goes to tier 2.
 static bool FindPlaneT(const PlaneProblem *p, real tMin, real tMax, PlaneT *plane) {
     dvec3 toA = Sub(p->a, p->origin);
     double denominator = DotD(p->n, p->dir);
     double t = DotD(p->n, toA) / denominator;
-    if (!(t < (double)tMax)) // also NaN: the ray is parallel to the plane, or n is 0
+    if (!std::isfinite(t)) // the ray is parallel to the plane, or n is 0
         return false;
     *plane = {t, PlainError(p, toA, t, denominator)};
-    if (!(plane->t + plane->error > (double)tMin))
+    if (!(t - plane->error < (double)tMax) || !(t + plane->error > (double)tMin))
         return false;
-    if (!(plane->t - plane->error > 0) || plane->error > kPlainRelativeError * std::fabs(t))
+    if (!(t - plane->error > 0) || plane->error > kPlainRelativeError * std::fabs(t))
         *plane = WidePlaneT(p);
     return (real)plane->t > tMin && (real)plane->t < tMax && plane->t > plane->error;
 }

@@ -93,7 +93,11 @@ bool ScreenCameraIsValid(const Camera *c, std::string *error) {
         return false;
     }
     vec3 toCorner = c->lowerLeft - c->eye;
-    if (!IsFinite(toCorner) || !(std::fabs(Dot(normal, SafeNormalize(toCorner))) > 0)) {
+    if (!IsFinite(Abs(toCorner) + Abs(c->horizontal) + Abs(c->vertical))) {
+        *error = "the screen is so large that a pixel's direction would overflow";
+        return false;
+    }
+    if (!(std::fabs(Dot(normal, SafeNormalize(toCorner))) > 0)) {
         *error = "the eye lies on the screen's plane (or is too far from it to subtract), so no "
                  "ray can pass through the screen";
         return false;

@@ -24,14 +24,13 @@ static void Write(const std::string &path, const std::string &text) {
 static const char *kSmallScene = "size 16 16\nmaterial red diffuse 1 0 0\nlight 0 4 0\n"
                                  "sphere 0 0 -3 1 red\n";
 
-// No temporary file (NAME.png.XXXXXX or NAME.ppm.XXXXXX) left in dir.
+// No temporary file (.ray-XXXXXX) left in dir.
 static bool NoTemporaryFiles(const std::string &dir) {
     DIR *folder = opendir(dir.c_str());
     int temporary = 0;
     while (dirent *entry = folder ? readdir(folder) : nullptr) {
         std::string name = entry->d_name;
-        temporary +=
-            name.find(".png.") != std::string::npos || name.find(".ppm.") != std::string::npos;
+        temporary += name.compare(0, 5, ".ray-") == 0;
     }
     if (folder)
         closedir(folder);
@@ -114,6 +113,15 @@ static void TestSpecialOutputs(const std::string &dir) {
               lstat((dir + "/link.png").c_str(), &info) == 0 && S_ISLNK(info.st_mode) &&
               ReadFile(dir + "/real.png") == ReadFile(dir + "/plain.png"),
           "a symbolic link as the output: the file it points to is replaced, the link stays");
+    int dangling = symlink("made-by-link.png", (dir + "/dangling.png").c_str());
+    CHECK(dangling == 0 && RunRay(dir, "my.scene -o dangling.png", &err) == 0 &&
+              lstat((dir + "/dangling.png").c_str(), &info) == 0 && S_ISLNK(info.st_mode) &&
+              ReadFile(dir + "/made-by-link.png") == ReadFile(dir + "/plain.png"),
+          "a dangling symbolic link as the output: its target is made, the link stays");
+    std::string longName = std::string(250, 'a') + ".png"; // 254 characters: the limit is 255
+    CHECK(RunRay(dir, "my.scene -o " + longName, &err) == 0 &&
+              ReadFile(dir + "/" + longName) == ReadFile(dir + "/plain.png"),
+          "an output name of 254 characters is written (" + err + ")");
     CHECK(RunRay(dir, "my.scene -o x.jpg", &err) == 2 && RunRay(dir, "my.scene -o x", &err) == 2,
           "an output named neither .png nor .ppm: exit 2");
     CHECK(RunRay(dir, "my.scene -o x.ppm", &err) == 0 &&
@@ -160,6 +168,18 @@ static void TestInterruptedWrites(const std::string &dir) {
               " wrote the whole image first, none left a broken file or a temporary one");
 }
 
+// Over a file-size limit (ulimit -f) the write fails with exit 3, and no temporary file is left:
+// SIGXFSZ, which would end the program, is ignored while writing.
+static void TestFileSizeLimit(const std::string &dir) {
+    std::string program = AbsoluteRayProgram();
+    std::string command =
+        "cd '" + dir + "' && (ulimit -f 16; '" + program + "' wide.scene -o limited.ppm) 2>err.txt";
+    int status = system(command.c_str());
+    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 3 && NoTemporaryFiles(dir),
+          "over a file-size limit of 16 blocks: exit 3 and no temporary file (" +
+              ReadFile(dir + "/err.txt") + ")");
+}
+
 // Inputs that are not what they should be: exit 2 with a message, never a hang or an abort.
 static void TestOddInputs(const std::string &dir) {
     std::string err;
@@ -191,6 +211,7 @@ void TestFiles() {
     TestReadOnlyOutput(dir);
     TestSpecialOutputs(dir);
     TestInterruptedWrites(dir);
+    TestFileSizeLimit(dir);
     TestOddInputs(dir);
     std::string command = "rm -rf '" + std::string(dir) + "'";
     int ignored = system(command.c_str());

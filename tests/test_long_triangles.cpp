@@ -178,7 +178,37 @@ static void TestBallOnBigFloor() {
               std::to_string(half) + " (" + std::to_string(lost) + " lost)");
 }
 
+// A sheet just behind a turned floor of half-size 1e13 (float: 1e5), listed before it: rays from
+// 1 above the floor, 25 degrees down, must meet the floor, not the sheet behind it. The floor's
+// plain-double t is off by more than the gap there; only its accurate t may be compared.
+static void TestFloorBeforeWhatIsBehindIt() {
+    real half = kDouble ? real(1e13) : real(1e5), gap = kDouble ? real(2e-3) : real(5e-2);
+    vec3 corner[4];
+    Scene s = FloorScene(half, true, corner);
+    Triangle sheet = {Turn({-20, -gap, -20}, true), Turn({20, -gap, 20}, true),
+                      Turn({20, -gap, -20}, true), 0};
+    s.triangles.insert(s.triangles.begin(), sheet);
+    TestRng rng = {31};
+    real slope = std::sin(real(25 * 3.14159265358979 / 180)),
+         flat = std::cos(real(25 * 3.14159265358979 / 180));
+    int wrong = 0;
+    for (int i = 0; i < 200; i++) {
+        real phi = real(6.283185307179586) * Uniform(&rng);
+        vec3 o = {10 * Uniform(&rng) - 5, 1, 10 * Uniform(&rng) - 5};
+        Ray ray = {Turn(o, true), Turn({flat * std::cos(phi), -slope, flat * std::sin(phi)}, true)};
+        RayHit hit;
+        wrong += !FindNearestHit(&s, kRobustMethods, &ray, 0, kInfinity, &hit) || hit.index == 0;
+    }
+    char what[160];
+    snprintf(what, sizeof what,
+             "a sheet %g behind a turned floor of half-size %g, listed first: %d of 200 rays "
+             "meet it instead of the floor",
+             (double)gap, (double)half, wrong);
+    CHECK(wrong == 0, what);
+}
+
 void TestLongTriangles() {
+    TestFloorBeforeWhatIsBehindIt();
     TestCorridorFloor();
     TestClosedBoxesHoldEveryRay();
     TestBigFloors();

@@ -231,7 +231,19 @@ static void TestProbeNumbers() {
                         std::to_string(bad) + " trees with nan or inf)");
 }
 
+// A screen so large that a pixel's direction would overflow is refused when read.
+static void TestOverflowingScreen() {
+    Scene scene;
+    std::string error, big = kDouble ? "1e308" : "3e38", half = kDouble ? "0.5e308" : "1.5e38";
+    std::string text = "camera screen 0 0 0  -" + half + " -" + half + " -1.5" + big.substr(1) +
+                       "  " + big + " 0 0  0 " + big + " -" + big + "\n";
+    CHECK(!ParseSceneText(text, "s.scene", &scene, &error) &&
+              error.find("so large that a pixel's direction would overflow") != std::string::npos,
+          "a screen whose pixel directions overflow is refused (" + error + ")");
+}
+
 void TestRanges() {
+    TestOverflowingScreen();
     TestProbeNumbers();
     TestEveryScale();
     TestFarFromTheOrigin();
