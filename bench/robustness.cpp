@@ -184,7 +184,7 @@ static void Scales() {
 // the hit point is from the surface, in units of s.
 static void Sizes() {
     std::vector<double> sizes =
-        kDouble ? std::vector<double>{1e-300, 1e-200, 1e-100, 1e100, 1e200, 1e300}
+        kDouble ? std::vector<double>{1e-306, 1e-300, 1e-200, 1e-100, 1e100, 1e200, 1e300, 1e304}
                 : std::vector<double>{1e-37, 1e-30, 1e-20, 1e20, 1e30, 1e36};
     printf("### Shapes of every size, %s: seen from 10 sizes away, 3 degrees off the centre\n\n",
            kPrecision);
