@@ -314,14 +314,12 @@ static inline bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, r
     return !LineMissesSphere(s, ray) && IntersectSphere(s, ray, tMin, tMax, hit);
 }
 
-// One triangle, by the chosen method; the watertight test with the ray's shear, computed once.
-static inline bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray,
-                               const RayShear *shear, real tMin, real tMax, RayHit *hit) {
+// One triangle by a handout method (the watertight method has its own loop, in watertight.cpp).
+static inline bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray, real tMin,
+                               real tMax, RayHit *hit) {
     if (methods.triangle == TRIANGLE_CRAMER)
         return IntersectTriangleCramer(tri, ray, tMin, tMax, hit);
-    if (methods.triangle == TRIANGLE_PLANE)
-        return IntersectTrianglePlane(tri, ray, tMin, tMax, hit);
-    return IntersectWatertight(tri, ray, shear, tMin, tMax, hit);
+    return IntersectTrianglePlane(tri, ray, tMin, tMax, hit);
 }
 
 // The second handout's nearest hit over the list of shapes: every hit shrinks tMax, so each
@@ -337,22 +335,32 @@ static bool HitShapes(const Scene *scene, Methods methods, const Ray *given, con
     int skipSphere = start->shape == SHAPE_SPHERE ? start->index : -1;
     int skipTriangle = start->shape == SHAPE_TRIANGLE ? start->index : -1;
     bool found = false;
-    for (int i = 0, n = (int)scene->spheres.size(); i < n && !(found && anyHit); i++) {
-        if (i != skipSphere && HitSphere(methods, &scene->spheres[i], ray, s.tMin, s.tMax, hit)) {
-            hit->index = i;
-            s.tMax = hit->t;
-            found = true;
-        }
+    for (int i = 0, n = (int)scene->spheres.size(); i < n; i++) {
+        if (i == skipSphere || !HitSphere(methods, &scene->spheres[i], ray, s.tMin, s.tMax, hit))
+            continue; // (the skip first: a test that hits writes *hit)
+        hit->index = i;
+        s.tMax = hit->t;
+        found = true;
+        if (anyHit)
+            return ScaleBack(&s, start->tMin, tMax, hit);
     }
-    RayShear shear;
-    ShearRay(ray, &shear);
-    for (int i = 0, n = (int)scene->triangles.size(); i < n && !(found && anyHit); i++) {
-        if (i != skipTriangle &&
-            HitTriangle(methods, &scene->triangles[i], ray, &shear, s.tMin, s.tMax, hit)) {
-            hit->index = i;
-            s.tMax = hit->t;
-            found = true;
-        }
+    if (methods.triangle == TRIANGLE_WATERTIGHT) {
+        RayShear shear; // the per-ray half of the test, once for all the triangles
+        ShearRay(ray, &shear);
+        found = HitWatertightTriangles(scene->triangles.data(), (int)scene->triangles.size(),
+                                       skipTriangle, ray, &shear, s.tMin, s.tMax, anyHit, hit) ||
+                found;
+        return found && ScaleBack(&s, start->tMin, tMax, hit);
+    }
+    for (int i = 0, n = (int)scene->triangles.size(); i < n; i++) {
+        if (i == skipTriangle ||
+            !HitTriangle(methods, &scene->triangles[i], ray, s.tMin, s.tMax, hit))
+            continue;
+        hit->index = i;
+        s.tMax = hit->t;
+        found = true;
+        if (anyHit)
+            break;
     }
     return found && ScaleBack(&s, start->tMin, tMax, hit);
 }

@@ -464,6 +464,12 @@ void ShearRay(const Ray *ray, RayShear *shear);
 bool IntersectWatertight(const Triangle *tri, const Ray *ray, const RayShear *shear, real tMin,
                          real tMax, RayHit *hit);
 
+// The triangle half of the shape loop (HitShapes) for the watertight method: the nearest hit
+// (the first, with anyHit) among triangles[0..n) but `skip`, with t in (tMin, tMax). Compiled once
+// per main axis, with the first step of the test inlined: most triangles end there.
+bool HitWatertightTriangles(const Triangle *triangles, int n, int skip, const Ray *ray,
+                            const RayShear *shear, real tMin, real tMax, bool anyHit, RayHit *hit);
+
 // ---- shade.cpp: lighting and the ray chain ---------------------------------------------------
 
 // Decides which effects a render of this scene with these settings can need (see Effects).

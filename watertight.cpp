@@ -166,3 +166,40 @@ bool IntersectWatertight(const Triangle *tri, const Ray *ray, const RayShear *sh
         return IntersectSheared<1>(tri, ray, shear, tMin, tMax, hit);
     return IntersectSheared<2>(tri, ray, shear, tMin, tMax, hit);
 }
+
+// The first step of IntersectSheared, small enough to sit inside the loop: true if the ray
+// passes outside an edge by the rounded edge functions alone. Most triangles a ray meets end
+// here, and only the rest pay for the whole test (which repeats these few operations).
+template <int kz> static inline bool PassesOutside(const Triangle *tri, const RayShear *k) {
+    ShearedTriangle s = ShearCorners<kz>(tri, k);
+    real u, v, w;
+    return EdgesDisagree(&s, &u, &v, &w);
+}
+
+// The loop of HitWatertightTriangles for one main axis: with kz a constant, every component is a
+// plain field, and the quick reject is inlined.
+template <int kz>
+static bool HitLoop(const Triangle *triangles, int n, int skip, const Ray *ray,
+                    const RayShear *shear, real tMin, real tMax, bool anyHit, RayHit *hit) {
+    bool found = false;
+    for (int i = 0; i < n; i++) {
+        if (PassesOutside<kz>(&triangles[i], shear) || i == skip ||
+            !IntersectSheared<kz>(&triangles[i], ray, shear, tMin, tMax, hit))
+            continue; // (the skip before the test: a test that hits writes *hit)
+        hit->index = i;
+        tMax = hit->t;
+        found = true;
+        if (anyHit)
+            break;
+    }
+    return found;
+}
+
+bool HitWatertightTriangles(const Triangle *triangles, int n, int skip, const Ray *ray,
+                            const RayShear *shear, real tMin, real tMax, bool anyHit, RayHit *hit) {
+    if (shear->kz == 0)
+        return HitLoop<0>(triangles, n, skip, ray, shear, tMin, tMax, anyHit, hit);
+    if (shear->kz == 1)
+        return HitLoop<1>(triangles, n, skip, ray, shear, tMin, tMax, anyHit, hit);
+    return HitLoop<2>(triangles, n, skip, ray, shear, tMin, tMax, anyHit, hit);
+}

@@ -175,6 +175,40 @@ static void TestSkipCannotSeeGlassFromInside() {
     }
 }
 
+// Under skip, the shape the ray leaves is passed over, and only it: a ray that enters sphere 1
+// toward sphere 0 finds sphere 0, its record intact, although sphere 1's far side, later in the
+// list, is nearer; likewise a ray leaving triangle 1 finds triangle 0.
+static void TestSkipPassesOverOneShape() {
+    Scene s = WallScene();
+    s.spheres = {{{0, 0, -10}, 1, 0}, {{0, 0, 0}, 1, 0}};
+    s.triangles = {{{-1, -1, -10}, {1, -1, -10}, {0, 1, -10}, 0},
+                   {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, 0}};
+    Methods skip = kRobustMethods;
+    skip.selfHit = SELF_HIT_SKIP;
+    for (ShapeKind kind : {SHAPE_SPHERE, SHAPE_TRIANGLE}) {
+        Scene one = s;
+        if (kind == SHAPE_SPHERE)
+            one.triangles.clear();
+        else
+            one.spheres.clear();
+        RayHit from;
+        from.shape = kind, from.index = 1;
+        // the sphere's near side, the ray going in: its far side, at t = 2, is nearer than
+        // sphere 0 at t = 10, and must not be taken
+        from.point = kind == SHAPE_SPHERE ? vec3{0, 0, 1} : vec3{0, 0, 0};
+        from.normal = {0, 0, 1}, from.pointError = {0, 0, 0};
+        Ray ray;
+        RayStart start;
+        LeaveSurface(&from, {0, 0, -1}, &skip, &ray, &start);
+        RayHit hit;
+        bool found = FindNearestHitFrom(&one, skip, &ray, &start, kInfinity, &hit);
+        CHECK(found && hit.shape == kind && hit.index == 0 && hit.t > 7,
+              std::string("--self-hit skip passes over the ") +
+                  (kind == SHAPE_SPHERE ? "sphere" : "triangle") +
+                  " it leaves and finds the one behind it, index 0");
+    }
+}
+
 // The slides' GetRay: the ray starts at the pixel's point on the screen and has unit length, so
 // t is the distance from the screen. The assignment's centre pixel meets the mirror sphere at
 // z = -14 (t = 7 from the eye with the unnormalised vector to a screen 2 away, 12 from the screen).
@@ -210,6 +244,7 @@ void TestMethods() {
     TestEpsilonAcneFarAway();
     TestEpsilonLosesSmallShadows();
     TestSkipCannotSeeGlassFromInside();
+    TestSkipPassesOverOneShape();
     TestSlidesGetRay();
     TestSchlick();
 }
