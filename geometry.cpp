@@ -1,10 +1,12 @@
 // geometry.cpp -- where rays meet shapes, and nothing else.
 //
 // The assignment handout's sphere (a quadratic) and triangle (Cramer's rule, variables A..M),
-// the second handout's nearest hit over a list of shapes, and a safe origin for rays that leave
-// a surface. The defaults are the numerically robust forms (Ray Tracing Gems ch. 7 for spheres,
-// Woop, Benthin & Wald 2013 for triangles, pbrt-v4 §6.8 for error bounds); the handout's Cramer
-// form stays selectable for teaching. Compiled with -ffp-contract=off: see the Makefile.
+// the second handout's triangle (the plane, then the cross products) and its nearest hit over a
+// list of shapes, and how a ray leaves a surface without hitting it again. The defaults are the
+// numerically robust forms: the sphere of Ray Tracing Gems ch. 7 here, the watertight triangle
+// test of Woop, Benthin & Wald in watertight.cpp with its t from plane.cpp, and pbrt-v4 §6.8's
+// error bounds for leaving a surface. The handout's forms are selectable (`--methods handout`),
+// each as a careful student writes it. Compiled with -ffp-contract=off: see the Makefile.
 #include "ray.h"
 
 #include <algorithm>
@@ -17,7 +19,7 @@ static void SetFaceNormal(const Ray *ray, vec3 outwardNormal, RayHit *hit) {
     hit->normal = hit->frontFace ? outwardNormal : -outwardNormal;
 }
 
-// The quadratic's discriminant b^2 - a c0 in the form a r^2 - |f x d|^2 (see IntersectSphere):
+// The quadratic's discriminant halfB^2 - A C in the form A r^2 - |f x d|^2 (see SolveSphere):
 // |f x d| / |d| is how far the ray's line passes from the centre, so it is negative exactly
 // when the line misses the sphere.
 static inline real SphereDiscriminant(vec3 f, vec3 d, real a, real r2) {
@@ -25,44 +27,43 @@ static inline real SphereDiscriminant(vec3 f, vec3 d, real a, real r2) {
     return a * r2 - Dot(fxd, fxd);
 }
 
-// Solve |f + t d|^2 = r^2 for f = o - c, the ray origin relative to the centre. Expanded, this
-// is a t^2 + 2 b t + c0 = 0 with a = d.d, b = f.d, c0 = f.f - r^2 (RTIOW v4 §6.2 uses the same
-// half-b form; the handout's A, B, C are a, 2b, c0).
-// Two fixes from Ray Tracing Gems ch. 7 (Haines et al. 2019), because the textbook form fails
-// for small spheres far away and for the near root:
-//   discriminant b^2 - a c0 = a r^2 - |f x d|^2 = a (r^2 - |f - (b/a) d|^2): measure how far the
-//     line passes from the centre instead of subtracting two huge nearly equal numbers (Hearn &
-//     Baker; the cross product gives the same distance without a division);
-//   roots q = -(b + sign(b) sqrt(disc)), t0 = c0 / q, t1 = q / a: never subtract nearly equal
-//     numbers (Press et al., Numerical Recipes §5.6).
+// The assignment handout's sphere: solve |o + t d - c|^2 = r^2, that is A t^2 + B t + C = 0 with
+// A = d.d, B = 2 d.(o - c), C = (o - c).(o - c) - r^2 (IntersectSphereTextbook is that form as the
+// slide writes it). Read with the handout beside it: the same names, with B kept as halfB = B/2
+// (Ray Tracing in One Weekend's half-b form), and each line the robust form changes marked with
+// the handout's line. Two changes, from Ray Tracing Gems ch. 7 (Haines et al. 2019), because the
+// textbook form fails for small spheres far away and for the near root:
+//   the discriminant B^2/4 - AC equals A r^2 - |f x d|^2 (f = o - c): how far the line passes
+//     from the centre, instead of the difference of two huge nearly equal numbers (Hearn & Baker);
+//   the roots q = -(halfB + sign(halfB) sqrt(disc)), t0 = C / q, t1 = q / A: never subtract
+//     nearly equal numbers (Press et al., Numerical Recipes §5.6).
 // Writes the nearest root in (tMin, tMax) and the hit point relative to the centre. The caller
 // has scaled f, d and r so that no square over- or underflows (IntersectSphere).
 static bool SolveSphere(vec3 f, vec3 d, real r, real tMin, real tMax, real *tHit, vec3 *local) {
-    real a = Dot(d, d);
-    real b = Dot(f, d);
-    real r2 = r * r;
+    real A = Dot(d, d);
+    real halfB = Dot(f, d); // handout: B = 2 d.(o - c)
+    real C = Dot(f, f) - r * r;
 
-    // Reject a sphere behind the ray: origin outside (c0 > 0) and moving away (b > 0) means both
-    // roots are negative (their product c0/a > 0, their sum -2b/a < 0)
-    real c0 = Dot(f, f) - r2;
-    if (b > 0 && c0 > 0 && tMin >= 0)
+    // A sphere behind the ray: the origin outside (C > 0) and moving away (halfB > 0) means both
+    // roots are negative (their product C/A > 0, their sum -B/A < 0)
+    if (halfB > 0 && C > 0 && tMin >= 0)
         return false;
 
-    // Reject if the line passes farther from the centre than the radius (NaN input lands here too)
-    real disc = SphereDiscriminant(f, d, a, r2);
+    // No hit if the line passes farther from the centre than the radius (NaN lands here too)
+    real disc = SphereDiscriminant(f, d, A, r * r); // handout: B^2 - 4AC (here / 4)
     if (!(disc >= 0))
         return false;
 
-    // Both roots without cancellation
+    // Both roots, without cancellation
     real sqrtDisc = std::sqrt(disc);
-    real q = -(b + std::copysign(sqrtDisc, b));
+    real q = -(halfB + std::copysign(sqrtDisc, halfB));
     if (q == 0) // the ray starts on the surface and is tangent to it
         return false;
-    real t0 = c0 / q, t1 = q / a;
+    real t0 = C / q, t1 = q / A; // handout: (-B -+ sqrt(B^2 - 4AC)) / 2A
     if (t0 > t1)
         std::swap(t0, t1);
 
-    // Pick the nearest root inside (tMin, tMax)
+    // The least root above tMin (the second handout: the least non-negative root)
     bool nearRoot = true;
     real t = t0;
     if (!(t > tMin)) {
@@ -75,12 +76,12 @@ static bool SolveSphere(vec3 f, vec3 d, real r, real tMin, real tMax, real *tHit
         return false;
 
     // The hit point, relative to the centre: the line's closest point to the centre, then half a
-    // chord back (near root) or on (far root), t = -b/a -+ sqrt(disc)/a. Unlike f + t d, this
+    // chord back (near root) or on (far root), t = -halfB/A -+ sqrt(disc)/A. Unlike f + t d, this
     // never subtracts nearly equal numbers, so it stays right when the sphere is tiny and far
     // away. Then put it back on the sphere (pbrt-v4 §6.8.5): what error remains lies along the
     // surface, not across it, a few roundings of the coordinates.
-    vec3 offLine = f - (b / a) * d;
-    vec3 p = offLine + ((nearRoot ? -sqrtDisc : sqrtDisc) / a) * d;
+    vec3 offLine = f - (halfB / A) * d;                             // handout: point = o + t d
+    vec3 p = offLine + ((nearRoot ? -sqrtDisc : sqrtDisc) / A) * d; // (relative to c)
     *local = (r / Length(p)) * p;
     *tHit = t;
     return true;
