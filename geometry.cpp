@@ -1,23 +1,13 @@
 // geometry.cpp -- where rays meet shapes, and nothing else.
 //
-// The assignment handout's sphere (a quadratic) and triangle (Cramer's rule, variables A..M),
-// the second handout's triangle (the plane, then the cross products) and its nearest hit over a
-// list of shapes, and how a ray leaves a surface without hitting it again. The defaults are the
-// numerically robust forms: the sphere of Ray Tracing Gems ch. 7 here, the watertight triangle
-// test of Woop, Benthin & Wald in watertight.cpp with its t from plane.cpp, and pbrt-v4 §6.8's
-// error bounds for leaving a surface. The handout's forms are selectable (`--methods handout`),
-// each as a careful student writes it. Compiled with -ffp-contract=off: see the Makefile.
+// rt's robust sphere (the assignment's quadratic, made stable: Ray Tracing Gems ch. 7), the second
+// handout's nearest hit over a list of shapes, which serves every ray, and how a ray leaves a
+// surface without hitting it again (pbrt-v4 §6.8's error bounds, or a handout's rule). Triangles:
+// watertight.cpp decides inside or outside, plane.cpp says where; the handouts' own forms of
+// both shapes are in handout.cpp. Compiled with -ffp-contract=off: see the Makefile.
 #include "ray.h"
 
 #include <algorithm>
-
-// Writes the fields every shape fills the same way; `outwardNormal` must be unit length.
-// The normal is turned to face the incoming ray, and frontFace records which side it came from;
-// a ray that grazes the surface (d.N = 0, a tangent) counts as arriving from outside.
-static void SetFaceNormal(const Ray *ray, vec3 outwardNormal, RayHit *hit) {
-    hit->frontFace = !(Dot(ray->dir, outwardNormal) > 0);
-    hit->normal = hit->frontFace ? outwardNormal : -outwardNormal;
-}
 
 // The quadratic's discriminant halfB^2 - A C in the form A r^2 - |f x d|^2 (see SolveSphere):
 // |f x d| / |d| is how far the ray's line passes from the centre, so it is negative exactly
@@ -126,56 +116,6 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
     return true;
 }
 
-// The assignment handout's sphere test, as the slide writes it: A t^2 + B t + C = 0 with
-// A = d.d, B = 2 d.(o - c), C = (o - c).(o - c) - r^2; no hit if B^2 - 4AC < 0; else the least root
-// above tMin (the second handout: the least non-negative one), and the point o + t d. It loses a
-// small sphere far away (C swallows r^2) and the near root of a big one (-B + sqrt cancels).
-// Its point's honest error bound is measured, not assumed: how far o + t d is from the sphere.
-bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
-    vec3 d = ray->dir, oc = ray->origin - s->center;
-    real A = Dot(d, d);
-    real B = 2 * Dot(d, oc);
-    real C = Dot(oc, oc) - s->radius * s->radius;
-    real discriminant = B * B - 4 * A * C;
-    if (!(discriminant >= 0) || !(A > 0))
-        return false;
-    real t = (-B - std::sqrt(discriminant)) / (2 * A);
-    if (!(t > tMin))
-        t = (-B + std::sqrt(discriminant)) / (2 * A);
-    if (!(t > tMin && t < tMax))
-        return false;
-    hit->t = t;
-    hit->point = ray->origin + t * d;
-    vec3 local = hit->point - s->center;
-    vec3 normal = (1 / s->radius) * local;
-    real offSphere = std::fabs(SafeLength(local) - s->radius) + Gamma(4) * SafeLength(local);
-    hit->pointError = offSphere * Abs(normal) + Gamma(2) * Abs(hit->point);
-    SetFaceNormal(ray, SafeNormalize(normal), hit);
-    hit->material = s->material;
-    hit->shape = SHAPE_SPHERE;
-    return true;
-}
-
-// Fills the hit record of a triangle hit at ray parameter t with barycentric coordinates
-// (b0, b1, b2) of the corners a, b, c; false (and *hit untouched) for a zero-area triangle. The
-// point is the barycentric combination, not o + t d: it lies on the triangle within
-// gamma(7) sum |b_i p_i| per axis (pbrt-v4 §6.8.5).
-static bool SetTriangleHit(const Triangle *tri, const Ray *ray, real t, real b0, real b1, real b2,
-                           RayHit *hit) {
-    // Return no intersection if the triangle is degenerate (zero area): it has no normal
-    vec3 n = SafeNormalize(Cross(tri->b - tri->a, tri->c - tri->a));
-    if (!(MaxComponent(n) > 0) || !IsFinite(n))
-        return false;
-    vec3 p0 = b0 * tri->a, p1 = b1 * tri->b, p2 = b2 * tri->c;
-    hit->t = t;
-    hit->point = p0 + p1 + p2;
-    hit->pointError = Gamma(7) * (Abs(p0) + Abs(p1) + Abs(p2));
-    SetFaceNormal(ray, n, hit);
-    hit->material = tri->material;
-    hit->shape = SHAPE_TRIANGLE;
-    return true;
-}
-
 // A ray's direction rescaled to a largest component in [1, 2) when it lies outside
 // kDirectionWindow (ray.h), and its interval with it, so that no shape test squares or divides a
 // direction of 1e-200 or 1e200 out of range. Scaling d by 2^k scales every t by 2^-k exactly;
@@ -224,79 +164,6 @@ bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax
     return true;
 }
 
-// The handout's triangle test: solve a + beta (b - a) + gamma (c - a) = e + t d by Cramer's
-// rule, with the variables A..M of the slide (Shirley & Marschner, Fundamentals of Computer
-// Graphics, §4.4.2). Kept for teaching and for the benchmark: it is not watertight, because each
-// triangle rounds its shared edges differently, so rays through an edge can slip between two
-// triangles (see the README's robustness section).
-bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
-                             RayHit *hit) {
-    vec3 a = tri->a, b = tri->b, c = tri->c, e = ray->origin, d = ray->dir;
-    real A = a.x - b.x, B = a.y - b.y, C = a.z - b.z;
-    real D = a.x - c.x, E = a.y - c.y, F = a.z - c.z;
-    real G = d.x, H = d.y, I = d.z;
-    real J = a.x - e.x, K = a.y - e.y, L = a.z - e.z;
-
-    // M is the determinant; 0 means the ray is parallel to the plane (or the triangle is flat)
-    real EIHF = E * I - H * F, GFDI = G * F - D * I, DHEG = D * H - E * G;
-    real M = A * EIHF + B * GFDI + C * DHEG;
-    if (M == 0 || !std::isfinite(M))
-        return false;
-
-    // Compute t, then reject early, as the handout does: t, then gamma, then beta
-    real AKJB = A * K - J * B, JCAL = J * C - A * L, BLKC = B * L - K * C;
-    real t = -(F * AKJB + E * JCAL + D * BLKC) / M;
-    if (!(t > tMin && t < tMax))
-        return false;
-    real gamma = (I * AKJB + H * JCAL + G * BLKC) / M;
-    if (gamma < 0 || gamma > 1)
-        return false;
-    real beta = (J * EIHF + K * GFDI + L * DHEG) / M;
-    if (beta < 0 || beta > 1 - gamma)
-        return false;
-
-    return SetTriangleHit(tri, ray, t, 1 - beta - gamma, beta, gamma, hit);
-}
-
-// The second handout's triangle test, in two steps. First the plane: n = (b - a) x (c - a) and
-// t = n.(a - o) / n.d (no hit if the ray is parallel, n.d = 0). Then inside or outside: the hit
-// point p is inside if the cross products (b - a) x (p - a), (c - b) x (p - b) and
-// (a - c) x (p - c) all point the way n does, compared on the coordinate where n is largest
-// (the other two can be 0 for a triangle seen edge-on). Not watertight: p is rounded, and each
-// triangle rounds its shared edge its own way. Its point's error bound is measured: how far
-// o + t d is from the plane, plus its own rounding.
-bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax,
-                            RayHit *hit) {
-    vec3 a = tri->a, b = tri->b, c = tri->c;
-    vec3 n = Cross(b - a, c - a);
-    real nDotD = Dot(n, ray->dir);
-    if (nDotD == 0 || !std::isfinite(nDotD))
-        return false;
-    real t = Dot(n, a - ray->origin) / nDotD;
-    if (!(t > tMin && t < tMax))
-        return false;
-    vec3 p = ray->origin + t * ray->dir;
-    vec3 size = Abs(n);
-    int k = size.x > size.y ? (size.x > size.z ? 0 : 2) : (size.y > size.z ? 1 : 2);
-    real nk = Component(n, k);
-    if (Component(Cross(b - a, p - a), k) * nk < 0 || Component(Cross(c - b, p - b), k) * nk < 0 ||
-        Component(Cross(a - c, p - c), k) * nk < 0)
-        return false;
-    vec3 unit = SafeNormalize(n);
-    hit->t = t;
-    hit->point = p;
-    real offPlane = std::fabs(Dot(unit, p - a)) + Gamma(4) * (SafeLength(p) + SafeLength(a));
-    hit->pointError = offPlane * Abs(unit) + Gamma(2) * Abs(p);
-    SetFaceNormal(ray, unit, hit);
-    hit->material = tri->material;
-    hit->shape = SHAPE_TRIANGLE;
-    return true;
-}
-
-// The first step of IntersectSphere, small enough to sit inside the shape loop: true if the
-// ray's line misses the sphere. It is the same expression IntersectSphere rejects on (there
-// rescaled by powers of two, which changes no sign), so the two agree, and most spheres a ray
-// meets end here.
 // Trusted only when a r^2 is a normal number: a square that overflowed (inf - inf is NaN, not
 // < 0) or fell below the normal range goes on to IntersectSphere, which rescales.
 static inline bool LineMissesSphere(const Sphere *s, const Ray *ray) {

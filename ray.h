@@ -218,6 +218,14 @@ struct RayHit {
     vec3 pointError; // |point - exact hit point| <= pointError, per axis
 };
 
+// Writes the fields every shape fills the same way; `outwardNormal` must be unit length.
+// The normal is turned to face the incoming ray, and frontFace records which side it came from;
+// a ray that grazes the surface (d.N = 0, a tangent) counts as arriving from outside.
+inline void SetFaceNormal(const Ray *ray, vec3 outwardNormal, RayHit *hit) {
+    hit->frontFace = !(Dot(ray->dir, outwardNormal) > 0);
+    hit->normal = hit->frontFace ? outwardNormal : -outwardNormal;
+}
+
 struct Sphere {
     vec3 center;
     real radius;
@@ -398,7 +406,8 @@ struct Image {
 // it then fills *hit and leaves it untouched on a miss. ray->dir need not be unit length, but
 // must not be zero.
 bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit);
-bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit);
+bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tMax,
+                             RayHit *hit); // handout.cpp
 bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit);
 bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                              RayHit *hit);
