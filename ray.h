@@ -502,7 +502,7 @@ real FresnelReflectance(real cosI, real eta);
 // Ray Tracing in One Weekend computes it; 1 under total internal reflection.
 real SchlickReflectance(real cosI, real eta);
 
-// ---- render.cpp: the camera and the render loop ------------------------------------------------
+// ---- camera.cpp: the cameras; render.cpp: the render loop -----------------------------------
 
 // The handout's GetRay: the ray from the eye through screenCoord, given in pixels from the
 // screen's top-left corner (pixel (i, j)'s centre is (i + 0.5, j + 0.5)). ray->dir is the

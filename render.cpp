@@ -1,10 +1,10 @@
-// render.cpp -- the cameras and the render loop.
+// render.cpp -- the render loop: samples in each pixel, and every pixel on every core.
 //
-// The assignment handout's GetRay(Perspective, vec2, Ray*), the second handout's screen camera
-// (and lookat, turned into it), one ray per pixel through its centre (or a regular grid of
-// samples inside it), and the loop over all pixels on all cores. Each pixel
-// is computed the same way whichever thread takes it, so the image never depends on the thread
-// count; threads take whole rows from a shared counter, so no core waits while work remains.
+// One ray per pixel through its centre (the handout's method), or N samples per pixel on a
+// regular grid, jittered in its cells, or adaptively; the cameras' rays come from camera.cpp.
+// Each pixel is computed the same way whichever thread takes it, so the image never depends on
+// the thread count; threads take whole rows from a shared counter, so no core waits while work
+// remains.
 #include "ray.h"
 
 #include <algorithm>
@@ -14,109 +14,6 @@
 #include <cstdio>
 #include <thread>
 #include <unistd.h>
-
-// The screen lies `distance` in front of the eye (at z = eye.z - distance), centred on the line
-// of sight, width p.width, with square pixels of size width / widthPixels; screen x grows to the
-// right and y grows up, while screenCoord.y counts pixel rows down from the top.
-void GetRay(Perspective p, vec2 screenCoord, Ray *ray) {
-    real pixelSize = p.width / p.widthPixels;
-    real x = (screenCoord.x - real(0.5) * p.widthPixels) * pixelSize;
-    real y = (real(0.5) * p.heightPixels - screenCoord.y) * pixelSize;
-    ray->origin = p.eye;
-    ray->dir = {x, y, -p.distance};
-}
-
-// The second handout's screen: pixel centres l + (i + .5)/W h + (j + .5)/H v with j counted
-// from the bottom; an image row y counts from the top, so the vertical fraction is (H - y) / H.
-// The direction is built from the corner as seen from the eye, l - e (PlanRender), not from l:
-// with the eye 1e15 from the origin, l + ... - e would lose the screen to rounding.
-void GetScreenRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray) {
-    real across = screenCoord.x / width, up = (height - screenCoord.y) / height;
-    ray->origin = camera->eye;
-    ray->dir = camera->toCorner + across * camera->horizontal + up * camera->vertical;
-}
-
-// The slides' GetRay (`--methods handout`): Position = the pixel's point on the screen,
-// Vector = normalize(pixel - camera). rt's own starts at the eye with the unnormalised vector
-// eye -> pixel (the second handout's form): t = 1 is then the screen, and a shape between the eye
-// and the screen is still seen.
-void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray) {
-    if (camera->kind == CAMERA_PERSPECTIVE)
-        GetRay(camera->perspective, screenCoord, ray);
-    else
-        GetScreenRay(camera, width, height, screenCoord, ray);
-    if (camera->fromScreen) {
-        ray->origin = ray->origin + ray->dir;
-        ray->dir = SafeNormalize(ray->dir);
-    }
-}
-
-// An orthonormal frame at the eye: w points back from the view, u right, v up (FCG §4.3). The
-// screen stands one unit in front of the eye, tan(fov / 2) high above the centre, and as wide as
-// the image's aspect ratio makes it (square pixels). Every vector is normalised after rescaling
-// (SafeNormalize), so a camera 1e200 from its target works, and the corner is kept relative to
-// the eye (toCorner), so a camera 1e30 from the origin does too.
-bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen,
-                    std::string *error) {
-    vec3 w = SafeNormalize(lookAt->from - lookAt->to);
-    vec3 u = SafeNormalize(Cross(SafeNormalize(lookAt->up), w));
-    real fov = lookAt->fovDegrees;
-    if (!(MaxComponent(w) > 0) || !IsFinite(w)) {
-        *error = "from and to are the same point (or too far apart to subtract)";
-        return false;
-    }
-    if (!(MaxComponent(u) > 0) || !IsFinite(u)) {
-        *error = "up is zero or along the view direction";
-        return false;
-    }
-    if (!(fov > 0 && fov < 180)) {
-        *error = "the field of view must be between 0 and 180 degrees";
-        return false;
-    }
-    vec3 v = Cross(w, u);
-    real halfHeight = std::tan(fov * real(M_PI / 360)), halfWidth = halfHeight * width / height;
-    *screen = *lookAt;
-    screen->kind = CAMERA_SCREEN;
-    screen->eye = lookAt->from;
-    screen->toCorner = -w - halfWidth * u - halfHeight * v;
-    screen->lowerLeft = lookAt->from + screen->toCorner;
-    screen->horizontal = (2 * halfWidth) * u;
-    screen->vertical = (2 * halfHeight) * v;
-    return true;
-}
-
-bool ScreenCameraIsValid(const Camera *c, std::string *error) {
-    vec3 h = SafeNormalize(c->horizontal), v = SafeNormalize(c->vertical);
-    vec3 normal = SafeNormalize(Cross(h, v));
-    if (!(MaxComponent(normal) > 0) || !IsFinite(normal)) {
-        *error = "the edges h and v must be non-zero and not parallel";
-        return false;
-    }
-    vec3 toCorner = c->lowerLeft - c->eye;
-    if (!IsFinite(Abs(toCorner) + Abs(c->horizontal) + Abs(c->vertical))) {
-        *error = "the screen is so large that a pixel's direction would overflow";
-        return false;
-    }
-    if (!(std::fabs(Dot(normal, SafeNormalize(toCorner))) > 0)) {
-        *error = "the eye lies on the screen's plane (or is too far from it to subtract), so no "
-                 "ray can pass through the screen";
-        return false;
-    }
-    return true;
-}
-
-void PlanRender(const Scene *scene, RenderSettings *settings) {
-    PlanEffects(scene, settings, &settings->effects);
-    settings->camera = scene->camera;
-    settings->camera.perspective.widthPixels = settings->width;
-    settings->camera.perspective.heightPixels = settings->height;
-    settings->camera.toCorner = scene->camera.lowerLeft - scene->camera.eye;
-    std::string unused;
-    if (scene->camera.kind == CAMERA_LOOKAT) // checked when the scene was read
-        LookAtToScreen(&scene->camera, settings->width, settings->height, &settings->camera,
-                       &unused);
-    settings->camera.fromScreen = settings->methods.cameraRay == CAMERA_RAY_SLIDES;
-}
 
 uint8_t ToByte(real c) {
     if (!(c > 0))
