@@ -24,10 +24,10 @@ SAN_CORE = $(call objs,build/sanitize,$(CORE))
 
 all: ray ray_float
 
-ray: build/double/ray.o $(DOUBLE_CORE)
+ray: build/double/ray.o build/double/options.o $(DOUBLE_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
-ray_float: build/float/ray.o $(FLOAT_CORE)
+ray_float: build/float/ray.o build/float/options.o $(FLOAT_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
 build/double/%.o: %.cpp
@@ -58,7 +58,7 @@ build/sanitize/%.o: %.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(SAN_FLAGS) $(RT_FLAGS) $(PNG_CFLAGS) -I. -c -o $@ $<
 
-build/sanitize/ray: build/sanitize/ray.o $(SAN_CORE)
+build/sanitize/ray: build/sanitize/ray.o build/sanitize/options.o $(SAN_CORE)
 	$(CXX) $(SAN_FLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
 build/sanitize/run_tests: $(call objs,build/sanitize/tests,$(TESTS)) $(SAN_CORE)

@@ -1,0 +1,247 @@
+// options.cpp -- the command line: `ray [SCENE] [options]`, as pinned in SPEC.md section 2.
+//
+// A table of the options and how many values each takes, a parser per value kind, and the
+// checks of what goes together. Nothing here prints; main does (ray.cpp).
+#include "options.h"
+
+#include <initializer_list>
+
+const char *kVersion = "rt 0.2.0";
+
+const char *kUsage =
+    "usage: ray [SCENE] [options]\n"
+    "\n"
+    "SCENE is `default` (the assignment scene, also when omitted), `test` (rt's own scene)\n"
+    "or the path of a scene file (see the README for the format).\n"
+    "\n"
+    "rendering:\n"
+    "  -o FILE                  output image, .png or .ppm (default: reference.png for default, "
+    "test.png for\n"
+    "                           test, NAME.png for a file NAME.scene)\n"
+    "  --size W[xH]             image size in pixels, 1..16384 (H defaults to W)\n"
+    "  --spp N                  samples per pixel, 1..65536 (default 1: the pixel centre)\n"
+    "  --aa grid|jitter|adaptive\n"
+    "                           where the samples go: a regular grid (default), one random\n"
+    "                           point per grid cell, or 5 first (centre and corners) and N\n"
+    "                           only where those differ (N > 5; up to 5 it is jitter)\n"
+    "  --depth N                most rays in one chain, primary included, 1..1000 (default 10)\n"
+    "  --threads N              worker threads, 1..1024 (default: all hardware threads)\n"
+    "  --triangle watertight|cramer\n"
+    "                           ray/triangle method: Woop-Benthin-Wald (default) or the\n"
+    "                           handout's Cramer's rule\n"
+    "  --sphere stable|textbook ray/sphere method: Ray Tracing Gems ch. 7 (default) or the\n"
+    "                           textbook quadratic, kept only to show what it gets wrong\n"
+    "  --view normal|depth|id|cost|shadow\n"
+    "                           draw a debug view instead of the lit image (default output:\n"
+    "                           the image's name with _VIEW added, e.g. reference_normal.png)\n"
+    "  --stats                  print time, rays by kind, Mrays/s and the effects used to stderr\n"
+    "\n"
+    "probing (prints JSON, renders nothing):\n"
+    "  --ray OX OY OZ DX DY DZ  the nearest hit of one ray\n"
+    "  --rays FILE              the nearest hit of every line `OX OY OZ DX DY DZ` (- = stdin)\n"
+    "  --pixel X Y              the tree of rays behind pixel (X, Y)\n"
+    "\n"
+    "comparing:\n"
+    "  --compare A.png B.png    RMSE, PSNR, largest difference, pixels over the tolerance;\n"
+    "                           -o FILE writes a heat map; exit 0 within tolerance, 1 outside\n"
+    "  --tolerance T            largest channel difference (0..255) still counted equal (0)\n"
+    "\n"
+    "  --help, --version        this text; the version\n";
+
+// Reads a whole number in [lo, hi] (ParseWholeNumber); an error names the option.
+static bool ParseInt(const char *text, int lo, int hi, const char *what, int *value,
+                     std::string *error) {
+    if (ParseWholeNumber(text, lo, hi, value, error))
+        return true;
+    *error = std::string(what) + ": " + *error;
+    return false;
+}
+
+// --size W or WxH
+static bool ParseSize(const char *text, Options *opt, std::string *error) {
+    std::string s = text;
+    size_t x = s.find('x');
+    std::string w = s.substr(0, x), h = x == std::string::npos ? w : s.substr(x + 1);
+    return ParseInt(w.c_str(), 1, 16384, "--size width", &opt->width, error) &&
+           ParseInt(h.c_str(), 1, 16384, "--size height", &opt->height, error);
+}
+
+// One word of a list: *index is its position. "--sphere must be stable or textbook, not 'x'".
+static bool ParseChoice(const std::string &option, const std::string &word,
+                        std::initializer_list<const char *> words, int *index, std::string *error) {
+    int k = 0;
+    std::string list;
+    for (const char *w : words) {
+        if (word == w) {
+            *index = k;
+            return true;
+        }
+        list += (k == 0 ? "" : k + 1 == (int)words.size() ? " or " : ", ") + std::string(w);
+        k++;
+    }
+    *error = option + " must be " + list + ", not '" + word + "'";
+    return false;
+}
+
+// `--self-hit bound|epsilon[=E]|skip`; E is a distance in world units, > 0 (default 1e-4).
+static bool ParseSelfHit(const std::string &word, Options *opt, std::string *error) {
+    size_t equals = word.find('=');
+    std::string name = word.substr(0, equals);
+    if (!ParseChoice("--self-hit", name, {"bound", "epsilon", "skip"}, &opt->selfHit, error))
+        return false;
+    if (equals == std::string::npos)
+        return true;
+    real e;
+    if (name != "epsilon" || !ParseReal(word.substr(equals + 1), &e, error) || !(e > 0)) {
+        *error =
+            "--self-hit: only epsilon takes a value, a distance > 0, as in epsilon=1e-3 (not '" +
+            word + "')";
+        return false;
+    }
+    opt->epsilon = e;
+    return true;
+}
+
+Methods ChosenMethods(const Options *opt) {
+    Methods m = opt->methodSet == 1 ? kHandoutMethods : kRobustMethods;
+    if (opt->sphere >= 0)
+        m.sphere = (SphereMethod)opt->sphere;
+    if (opt->triangle >= 0)
+        m.triangle = (TriangleMethod)opt->triangle;
+    if (opt->selfHit >= 0)
+        m.selfHit = (SelfHitMethod)opt->selfHit;
+    if (opt->epsilon > 0)
+        m.epsilon = opt->epsilon;
+    if (opt->cameraRay >= 0)
+        m.cameraRay = (CameraRayMethod)opt->cameraRay;
+    if (opt->fresnel >= 0)
+        m.fresnel = (FresnelMethod)opt->fresnel;
+    return m;
+}
+
+static bool ParseOption(const std::string &a, char **v, Options *opt, std::string *error) {
+    if (a == "-o")
+        opt->output = v[0];
+    else if (a == "--size")
+        return ParseSize(v[0], opt, error);
+    else if (a == "--spp")
+        return ParseInt(v[0], 1, 65536, "--spp", &opt->spp, error);
+    else if (a == "--depth")
+        return ParseInt(v[0], 1, 1000, "--depth", &opt->depth, error);
+    else if (a == "--threads")
+        return ParseInt(v[0], 1, 1024, "--threads", &opt->threads, error);
+    else if (a == "--aa")
+        return ParseChoice(a, v[0], {"grid", "jitter", "adaptive"}, &opt->sampling, error);
+    else if (a == "--methods")
+        return ParseChoice(a, v[0], {"robust", "handout"}, &opt->methodSet, error);
+    else if (a == "--sphere")
+        return ParseChoice(a, v[0], {"stable", "textbook"}, &opt->sphere, error);
+    else if (a == "--triangle")
+        return ParseChoice(a, v[0], {"watertight", "cramer", "plane"}, &opt->triangle, error);
+    else if (a == "--camera-ray")
+        return ParseChoice(a, v[0], {"eye", "slides"}, &opt->cameraRay, error);
+    else if (a == "--fresnel")
+        return ParseChoice(a, v[0], {"exact", "schlick"}, &opt->fresnel, error);
+    else if (a == "--self-hit")
+        return ParseSelfHit(v[0], opt, error);
+    else if (a == "--view") {
+        opt->view = FindView(v[0], &opt->viewKind);
+        if (!opt->view) {
+            *error =
+                std::string("--view must be normal, depth, id, cost or shadow, not '") + v[0] + "'";
+            return false;
+        }
+    } else if (a == "--ray") {
+        opt->probeRay = true;
+        for (int k = 0; k < 6; k++)
+            if (!ParseReal(v[k], &opt->probe[k], error)) {
+                *error = "--ray: " + *error;
+                return false;
+            }
+        if (opt->probe[3] == 0 && opt->probe[4] == 0 && opt->probe[5] == 0) {
+            *error = "--ray: direction is zero";
+            return false;
+        }
+    } else if (a == "--rays")
+        opt->raysFile = v[0];
+    else if (a == "--pixel") {
+        opt->pixel = true;
+        return ParseInt(v[0], 0, 16383, "--pixel X", &opt->pixelX, error) &&
+               ParseInt(v[1], 0, 16383, "--pixel Y", &opt->pixelY, error);
+    } else if (a == "--compare") {
+        opt->compare = true;
+        opt->compareA = v[0];
+        opt->compareB = v[1];
+    } else if (a == "--tolerance") {
+        real t;
+        if (!ParseReal(v[0], &t, error) || !(t >= 0 && t <= 255)) {
+            *error = std::string("--tolerance must be a number from 0 to 255, not '") + v[0] + "'";
+            return false;
+        }
+        opt->tolerance = t;
+    }
+    return true;
+}
+
+bool ParseOptions(int argc, char **argv, Options *opt, std::string *error) {
+    static const struct {
+        const char *name;
+        int values;
+    } kOptions[] = {{"-o", 1},        {"--size", 1},      {"--spp", 1},        {"--depth", 1},
+                    {"--threads", 1}, {"--aa", 1},        {"--triangle", 1},   {"--sphere", 1},
+                    {"--methods", 1}, {"--self-hit", 1},  {"--camera-ray", 1}, {"--fresnel", 1},
+                    {"--view", 1},    {"--ray", 6},       {"--rays", 1},       {"--pixel", 2},
+                    {"--compare", 2}, {"--tolerance", 1}, {"--stats", 0},      {"--help", 0},
+                    {"-h", 0},        {"--version", 0}};
+    bool sceneGiven = false;
+    std::string seen; // the options given so far, each between spaces
+    for (int k = 1; k < argc; k++) {
+        std::string a = argv[k];
+        int values = -1;
+        for (const auto &o : kOptions)
+            if (a == o.name)
+                values = o.values;
+        if (values < 0 && a.size() > 1 && a[0] == '-') {
+            *error = "unknown option '" + a + "' (see ray --help)";
+            return false;
+        }
+        if (values < 0) { // the scene
+            if (sceneGiven) {
+                *error = "more than one scene given: '" + opt->scene + "' and '" + a + "'";
+                return false;
+            }
+            opt->scene = a;
+            sceneGiven = true;
+            continue;
+        }
+        if (seen.find(" " + a + " ") != std::string::npos) {
+            *error = a + " given twice";
+            return false;
+        }
+        seen += " " + a + " ";
+        if (k + values >= argc) {
+            *error = a + " needs " + std::to_string(values) + " value" + (values > 1 ? "s" : "");
+            return false;
+        }
+        opt->stats = opt->stats || a == "--stats";
+        opt->help = opt->help || a == "--help" || a == "-h";
+        opt->version = opt->version || a == "--version";
+        if (!ParseOption(a, argv + k + 1, opt, error))
+            return false;
+        k += values;
+    }
+    if (seen.find(" --tolerance ") != std::string::npos && !opt->compare) {
+        *error = "--tolerance goes with --compare";
+        return false;
+    }
+    int modes = opt->probeRay + !opt->raysFile.empty() + opt->pixel + opt->compare + opt->view;
+    if (modes > 1) {
+        *error = "choose one of --ray, --rays, --pixel, --view and --compare";
+        return false;
+    }
+    if (!opt->output.empty() && (opt->probeRay || opt->pixel || !opt->raysFile.empty())) {
+        *error = "-o goes with a render, --view or --compare; probes print to standard output";
+        return false;
+    }
+    return true;
+}
