@@ -119,6 +119,11 @@ mkdir -p build/bench
 } >build/bench/robustness.md
 echo
 echo "## Robustness: build/bench/robustness.md"
+{
+    build/double/rtbench methods
+    build/float/rtbench methods
+} >build/bench/methods.md
+echo "## What each method costs and buys: build/bench/methods.md"
 
 # What accuracy costs in time: bench/results.csv, results.md, accuracy_vs_time.svg, heat maps
 echo "scene,knob,setting,spp,seconds,rays,rmse,psnr,off1,off8" >"$out/results.csv"

@@ -1,0 +1,186 @@
+// bench/methods.cpp -- `rtbench methods`: what each numerical method costs and what it buys.
+//
+// For every sphere, triangle and self-hit method, in this build's precision: the time of one
+// intersection test (a fixed set of rays, hits and misses timed apart), the hard-case rows it
+// passes, and the pixels of the test scene that differ from the robust image (by more than
+// 2/255) at scales 1e-4, 1 and 1e4 and moved far from the origin, where a method's failures show
+// as acne, leaks and cracks. Prints Markdown.
+#include "../tests/hard_cases.h"
+
+#include <chrono>
+#include <cstdio>
+#include <random>
+
+static const bool kDouble = sizeof(real) == sizeof(double);
+
+// Nanoseconds per call of test(ray k) over the rays, the best of 5 rounds of at least 20 ms.
+template <typename Test> static double NanosecondsPerCall(const std::vector<Ray> &rays, Test test) {
+    double best = 1e30;
+    for (int round = 0; round < 5; round++) {
+        long calls = 0;
+        int sink = 0;
+        auto start = std::chrono::steady_clock::now();
+        double seconds = 0;
+        while (seconds < 0.02) {
+            for (const Ray &ray : rays)
+                sink += test(&ray);
+            calls += (long)rays.size();
+            seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        }
+        best = std::min(best, seconds * 1e9 / calls + sink * 1e-300);
+    }
+    return best;
+}
+
+// Rays from around the origin toward random points of a box that holds the shape: about half hit.
+static std::vector<Ray> RaySet(uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1.2, 1.2);
+    std::vector<Ray> rays;
+    for (int k = 0; k < 4096; k++) {
+        vec3 o = {(real)(0.1 * u(rng)), (real)(0.1 * u(rng)), (real)(0.1 * u(rng))};
+        vec3 target = {(real)u(rng), (real)u(rng), -5};
+        rays.push_back({o, target - o});
+    }
+    return rays;
+}
+
+// Splits the ray set by whether the robust routine hits, and times `routine` on each part.
+template <typename Routine, typename Robust>
+static void TimeRoutine(const char *name, Routine routine, Robust robust) {
+    std::vector<Ray> all = RaySet(7), hits, misses;
+    RayHit hit;
+    for (const Ray &ray : all)
+        (robust(&ray, &hit) ? hits : misses).push_back(ray);
+    double h = NanosecondsPerCall(hits, [&](const Ray *r) { return (int)routine(r, &hit); });
+    double m = NanosecondsPerCall(misses, [&](const Ray *r) { return (int)routine(r, &hit); });
+    printf("| %s | %.1f | %.1f |", name, h, m);
+}
+
+// The test scene with every length times `scale` and moved by `shift` along (1, -1, 1).
+static Scene Moved(const Scene &original, real scale, real shift) {
+    Scene s = original;
+    auto move = [&](vec3 p) { return scale * p + vec3{shift, -shift, shift}; };
+    for (Sphere &sphere : s.spheres)
+        sphere.center = move(sphere.center), sphere.radius *= scale;
+    for (Triangle &t : s.triangles)
+        t = {move(t.a), move(t.b), move(t.c), t.material};
+    for (Light &light : s.lights)
+        light.position = move(light.position);
+    s.camera.perspective.eye = move(s.camera.perspective.eye);
+    s.camera.perspective.distance *= scale;
+    s.camera.perspective.width *= scale;
+    return s;
+}
+
+static Image RenderWith(const Scene *scene, Methods methods) {
+    RenderSettings settings = {128, 128, 1, SAMPLES_GRID, scene->depth, 2, methods, false, {}, {}};
+    Image image;
+    RayStats stats = {0, 0, 0, 0, 0};
+    Render(scene, &settings, &image, &stats);
+    return image;
+}
+
+static long PixelsOff(const Image &a, const Image &b) {
+    long off = 0;
+    for (size_t p = 0; p < a.pixels.size(); p += 3) {
+        int largest = 0;
+        for (int c = 0; c < 3; c++)
+            largest = std::max(largest, std::abs(a.pixels[p + c] - b.pixels[p + c]));
+        off += largest > 2;
+    }
+    return off;
+}
+
+// The artefact columns: pixels off the robust image of the same scene, per placement.
+static void ArtefactCells(const Scene &test, Methods methods) {
+    const real placements[][2] = {
+        {real(1e-4), 0}, {1, 0}, {real(1e4), 0}, {1, kDouble ? real(1e9) : real(1e3)}};
+    for (const auto &p : placements) {
+        Scene scene = Moved(test, p[0], p[1]);
+        printf(" %ld |",
+               PixelsOff(RenderWith(&scene, kRobustMethods), RenderWith(&scene, methods)));
+    }
+}
+
+static int HardCasesPassed(SphereRoutine sphere, TriangleRoutine triangle, int *rows) {
+    std::vector<HardCaseResult> results;
+    RunHardCases(sphere, triangle, &results);
+    int passed = 0;
+    for (const HardCaseResult &r : results)
+        passed += r.passed;
+    *rows = (int)results.size();
+    return passed;
+}
+
+int MethodsTable() {
+    const char *precision = kDouble ? "double" : "float";
+    printf("### What each method costs and buys, %s\n\n", precision);
+    printf("Time of one test (ns, best of 5 rounds, one thread), hard-case rows passed with the "
+           "robust other shape, and pixels of the 128 x 128 test scene more than 2/255 off the "
+           "robust image, at scale 1e-4, 1, 1e4 and moved %s from the origin.\n\n",
+           kDouble ? "1e9" : "1e3");
+    printf("| method | ns, hit | ns, miss | hard cases | off at 1e-4 | off at 1 | off at 1e4 | "
+           "off far away |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    Scene test;
+    BuildTestScene(&test);
+    Sphere sphere = {{0, 0, -5}, 1, 0};
+    Triangle tri = {{-1, -1, -5}, {1, -1, -5}, {0, 1, -5}, 0};
+    auto stable = [&](const Ray *r, RayHit *h) {
+        return IntersectSphere(&sphere, r, 0, kInfinity, h);
+    };
+    struct SphereRow {
+        const char *name;
+        SphereRoutine routine;
+        SphereMethod method;
+    } spheres[] = {{"sphere: stable", IntersectSphere, SPHERE_STABLE},
+                   {"sphere: textbook (handout)", IntersectSphereTextbook, SPHERE_TEXTBOOK}};
+    for (const SphereRow &row : spheres) {
+        TimeRoutine(
+            row.name,
+            [&](const Ray *r, RayHit *h) { return row.routine(&sphere, r, 0, kInfinity, h); },
+            stable);
+        int rows, passed = HardCasesPassed(row.routine, IntersectTriangle, &rows);
+        printf(" %d of %d |", passed, rows);
+        Methods m = kRobustMethods;
+        m.sphere = row.method;
+        ArtefactCells(test, m);
+        printf("\n");
+    }
+    auto watertight = [&](const Ray *r, RayHit *h) {
+        return IntersectTriangle(&tri, r, 0, kInfinity, h);
+    };
+    struct TriangleRow {
+        const char *name;
+        TriangleRoutine routine;
+        TriangleMethod method;
+    } triangles[] = {{"triangle: watertight", IntersectTriangle, TRIANGLE_WATERTIGHT},
+                     {"triangle: Cramer (handout)", IntersectTriangleCramer, TRIANGLE_CRAMER},
+                     {"triangle: plane (2nd handout)", IntersectTrianglePlane, TRIANGLE_PLANE}};
+    for (const TriangleRow &row : triangles) {
+        TimeRoutine(
+            row.name,
+            [&](const Ray *r, RayHit *h) { return row.routine(&tri, r, 0, kInfinity, h); },
+            watertight);
+        int rows, passed = HardCasesPassed(IntersectSphere, row.routine, &rows);
+        printf(" %d of %d |", passed, rows);
+        Methods m = kRobustMethods;
+        m.triangle = row.method;
+        ArtefactCells(test, m);
+        printf("\n");
+    }
+    const char *selfHits[] = {"self-hit: bound", "self-hit: epsilon 1e-4 (journal)",
+                              "self-hit: skip (2nd handout)"};
+    for (int k = 0; k < 3; k++) {
+        printf("| %s | | | |", selfHits[k]);
+        Methods m = kRobustMethods;
+        m.selfHit = (SelfHitMethod)k;
+        ArtefactCells(test, m);
+        printf("\n");
+    }
+    printf("| the whole handout set | | | |");
+    ArtefactCells(test, kHandoutMethods);
+    printf("\n\n");
+    return 0;
+}
