@@ -1,7 +1,8 @@
 // ray.h -- the map of rt, a teaching ray tracer.
 //
-// Every struct of the course handouts (Perspective, Ray, RayHit, Sphere, Triangle, Material,
-// Light, Scene) and every function, grouped by the file that defines it. Plain data, free
+// In reading order: numbers and vectors; the structs of the course handouts (Ray, Perspective,
+// RayHit, Sphere, Triangle, Material, Light, Scene); the choice of numerical methods; the render's
+// plumbing; then every function, grouped by the file that defines it. Plain data, free
 // functions, no globals: a render reads a const Scene and a RenderSettings and nothing else.
 // `real` is double, or float when built with -DRT_FLOAT (the ray_float program).
 #ifndef RAY_H
@@ -78,87 +79,6 @@ inline real MaxComponent(vec3 a) { // of |a|, for finite a
     return m > std::fabs(a.z) ? m : std::fabs(a.z);
 }
 
-// ---- powers of two: exact rescaling ---------------------------------------------------------
-// Multiplying by a power of two changes only the exponent, so it is exact unless the result
-// leaves the range of numbers. rt rescales any vector whose squares could overflow or underflow
-// (a direction of 1e200 or 1e-200, a sphere of radius 1e-200) to a largest component in [1, 2),
-// computes there, and scales the answer back: the same bits as unscaled arithmetic would give
-// had it not overflowed.
-
-// floor(log2 |x|) for finite x != 0: the exponent field, read directly (std::ilogb is a library
-// call, and the shape loop asks for it on every ray); subnormal x takes the library's path.
-inline int BinaryExponent(real x) {
-#ifdef RT_FLOAT
-    uint32_t bits;
-    memcpy(&bits, &x, sizeof bits);
-    int field = (int)((bits >> 23) & 0xff);
-    return field != 0 ? field - 127 : std::ilogb(x);
-#else
-    uint64_t bits;
-    memcpy(&bits, &x, sizeof bits);
-    int field = (int)((bits >> 52) & 0x7ff);
-    return field != 0 ? field - 1023 : std::ilogb(x);
-#endif
-}
-
-// 2^k: the exponent field written directly when 2^k is a normal number, else the library's.
-inline real PowerOfTwo(int k) {
-    real x;
-#ifdef RT_FLOAT
-    if (k < -126 || k > 127)
-        return std::ldexp(real(1), k);
-    uint32_t bits = (uint32_t)(k + 127) << 23;
-#else
-    if (k < -1022 || k > 1023)
-        return std::ldexp(real(1), k);
-    uint64_t bits = (uint64_t)(k + 1023) << 52;
-#endif
-    memcpy(&x, &bits, sizeof x);
-    return x;
-}
-
-// x * 2^k and v * 2^k for any k (in two exact steps when 2^k itself is out of range).
-inline real ScaleByPowerOfTwo(real x, int k) {
-    const int kMax = std::numeric_limits<real>::max_exponent - 1;
-    if (k > -kMax && k < kMax)
-        return PowerOfTwo(k) * x;
-    return PowerOfTwo(k - k / 2) * (PowerOfTwo(k / 2) * x);
-}
-inline vec3 ScaleByPowerOfTwo(vec3 v, int k) {
-    return {ScaleByPowerOfTwo(v.x, k), ScaleByPowerOfTwo(v.y, k), ScaleByPowerOfTwo(v.z, k)};
-}
-
-// Sizes inside these windows can be squared and multiplied together without leaving the normal
-// range of `real`, so the shape tests rescale only what lies outside: a direction whose largest
-// component is within 2^+-kDirectionWindow (2^+-64 in double, 2^+-8 in float), a radius or a
-// distance from a sphere's centre within 2^+-kLengthWindow (2^+-256, 2^+-32).
-const int kDirectionWindow = std::numeric_limits<real>::max_exponent / 16;
-const int kLengthWindow = 4 * kDirectionWindow;
-inline bool WithinWindow(real m, int window) {
-    return m >= PowerOfTwo(-window) && m <= PowerOfTwo(window);
-}
-
-// The power of two that brings v's largest component into [1, 2): v * 2^UnitExponent(v). 0 for
-// a zero or non-finite v (nothing to rescale).
-inline int UnitExponent(vec3 v) {
-    real m = MaxComponent(v);
-    return m > 0 && std::isfinite(m) ? -BinaryExponent(m) : 0;
-}
-
-// |v| for v of any finite size, by the same rescaling.
-inline real SafeLength(vec3 v) {
-    int k = UnitExponent(v);
-    return ScaleByPowerOfTwo(Length(ScaleByPowerOfTwo(v, k)), -k);
-}
-
-// A unit vector in the direction of v, for v of any finite size (1e-300 or 1e300), by rescaling
-// before squaring. The zero vector stays zero.
-inline vec3 SafeNormalize(vec3 v) {
-    vec3 w = ScaleByPowerOfTwo(v, UnitExponent(v));
-    real length = Length(w);
-    return length > 0 ? (1 / length) * w : w;
-}
-
 // ---- the handouts' structs -----------------------------------------------------------------
 
 // A ray: points origin + t * dir for t in an interval. dir need not be unit length.
@@ -218,14 +138,6 @@ struct RayHit {
     vec3 pointError; // |point - exact hit point| <= pointError, per axis
 };
 
-// Writes the fields every shape fills the same way; `outwardNormal` must be unit length.
-// The normal is turned to face the incoming ray, and frontFace records which side it came from;
-// a ray that grazes the surface (d.N = 0, a tangent) counts as arriving from outside.
-inline void SetFaceNormal(const Ray *ray, vec3 outwardNormal, RayHit *hit) {
-    hit->frontFace = !(Dot(ray->dir, outwardNormal) > 0);
-    hit->normal = hit->frontFace ? outwardNormal : -outwardNormal;
-}
-
 struct Sphere {
     vec3 center;
     real radius;
@@ -275,6 +187,8 @@ struct Scene {
     std::vector<Light> lights;
 };
 
+// ---- the numerical methods: robust, or the handouts' (geometry.cpp, handout.cpp, shade.cpp) --
+
 // The numerical methods of a render: the robust defaults, or each method the course documents
 // describe, as a careful student writes it (`--methods handout`), to teach with and to show in
 // `make bench` what each robust step costs and buys. Every combination renders; each method
@@ -315,6 +229,8 @@ const Methods kRobustMethods = {SPHERE_STABLE, TRIANGLE_WATERTIGHT, SELF_HIT_BOU
                                 real(1e-4),    CAMERA_RAY_EYE,      FRESNEL_EXACT};
 const Methods kHandoutMethods = {SPHERE_TEXTBOOK, TRIANGLE_CRAMER,   SELF_HIT_EPSILON,
                                  real(1e-4),      CAMERA_RAY_SLIDES, FRESNEL_SCHLICK};
+
+// ---- render plumbing: effects, settings, chains and trees of rays (shade.cpp, render.cpp) --
 
 // Which effects a render can need, decided once per render from the scene and the settings
 // (PlanEffects); the shading code skips whole paths for the absent ones.
@@ -400,7 +316,96 @@ struct Image {
     std::vector<uint8_t> pixels;
 };
 
+// ---- numerics: exact rescaling by powers of two (the shape tests, shading, cameras) --------
+// Multiplying by a power of two changes only the exponent, so it is exact unless the result
+// leaves the range of numbers. rt rescales any vector whose squares could overflow or underflow
+// (a direction of 1e200 or 1e-200, a sphere of radius 1e-200) to a largest component in [1, 2),
+// computes there, and scales the answer back: the same bits as unscaled arithmetic would give
+// had it not overflowed.
+
+// floor(log2 |x|) for finite x != 0: the exponent field, read directly (std::ilogb is a library
+// call, and the shape loop asks for it on every ray); subnormal x takes the library's path.
+inline int BinaryExponent(real x) {
+#ifdef RT_FLOAT
+    uint32_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    int field = (int)((bits >> 23) & 0xff);
+    return field != 0 ? field - 127 : std::ilogb(x);
+#else
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    int field = (int)((bits >> 52) & 0x7ff);
+    return field != 0 ? field - 1023 : std::ilogb(x);
+#endif
+}
+
+// 2^k: the exponent field written directly when 2^k is a normal number, else the library's.
+inline real PowerOfTwo(int k) {
+    real x;
+#ifdef RT_FLOAT
+    if (k < -126 || k > 127)
+        return std::ldexp(real(1), k);
+    uint32_t bits = (uint32_t)(k + 127) << 23;
+#else
+    if (k < -1022 || k > 1023)
+        return std::ldexp(real(1), k);
+    uint64_t bits = (uint64_t)(k + 1023) << 52;
+#endif
+    memcpy(&x, &bits, sizeof x);
+    return x;
+}
+
+// x * 2^k and v * 2^k for any k (in two exact steps when 2^k itself is out of range).
+inline real ScaleByPowerOfTwo(real x, int k) {
+    const int kMax = std::numeric_limits<real>::max_exponent - 1;
+    if (k > -kMax && k < kMax)
+        return PowerOfTwo(k) * x;
+    return PowerOfTwo(k - k / 2) * (PowerOfTwo(k / 2) * x);
+}
+inline vec3 ScaleByPowerOfTwo(vec3 v, int k) {
+    return {ScaleByPowerOfTwo(v.x, k), ScaleByPowerOfTwo(v.y, k), ScaleByPowerOfTwo(v.z, k)};
+}
+
+// Sizes inside these windows can be squared and multiplied together without leaving the normal
+// range of `real`, so the shape tests rescale only what lies outside: a direction whose largest
+// component is within 2^+-kDirectionWindow (2^+-64 in double, 2^+-8 in float), a radius or a
+// distance from a sphere's centre within 2^+-kLengthWindow (2^+-256, 2^+-32).
+const int kDirectionWindow = std::numeric_limits<real>::max_exponent / 16;
+const int kLengthWindow = 4 * kDirectionWindow;
+inline bool WithinWindow(real m, int window) {
+    return m >= PowerOfTwo(-window) && m <= PowerOfTwo(window);
+}
+
+// The power of two that brings v's largest component into [1, 2): v * 2^UnitExponent(v). 0 for
+// a zero or non-finite v (nothing to rescale).
+inline int UnitExponent(vec3 v) {
+    real m = MaxComponent(v);
+    return m > 0 && std::isfinite(m) ? -BinaryExponent(m) : 0;
+}
+
+// |v| for v of any finite size, by the same rescaling.
+inline real SafeLength(vec3 v) {
+    int k = UnitExponent(v);
+    return ScaleByPowerOfTwo(Length(ScaleByPowerOfTwo(v, k)), -k);
+}
+
+// A unit vector in the direction of v, for v of any finite size (1e-300 or 1e300), by rescaling
+// before squaring. The zero vector stays zero.
+inline vec3 SafeNormalize(vec3 v) {
+    vec3 w = ScaleByPowerOfTwo(v, UnitExponent(v));
+    real length = Length(w);
+    return length > 0 ? (1 / length) * w : w;
+}
+
 // ---- geometry.cpp: ray/shape intersection ----------------------------------------------------
+
+// Writes the fields every shape fills the same way; `outwardNormal` must be unit length.
+// The normal is turned to face the incoming ray, and frontFace records which side it came from;
+// a ray that grazes the surface (d.N = 0, a tangent) counts as arriving from outside.
+inline void SetFaceNormal(const Ray *ray, vec3 outwardNormal, RayHit *hit) {
+    hit->frontFace = !(Dot(ray->dir, outwardNormal) > 0);
+    hit->normal = hit->frontFace ? outwardNormal : -outwardNormal;
+}
 
 // Each intersect function returns true only for a hit with t in the open interval (tMin, tMax);
 // it then fills *hit and leaves it untouched on a miss. ray->dir need not be unit length, but
