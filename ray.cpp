@@ -135,10 +135,72 @@ static int Probe(const Options *opt, const Scene *scene, const RenderSettings *s
     return status;
 }
 
+// The render settings the scene and the options choose.
+static RenderSettings ChosenSettings(const Options *opt, const Scene *scene) {
+    RenderSettings settings;
+    settings.width = opt->width ? opt->width : scene->width;
+    settings.height = opt->height ? opt->height : scene->height;
+    settings.samplesPerPixel = opt->spp;
+    settings.sampling = (SampleMethod)opt->sampling;
+    settings.depth = opt->depth ? opt->depth : scene->depth;
+    unsigned hardware = std::thread::hardware_concurrency();
+    settings.threads = opt->threads ? opt->threads : (hardware ? (int)hardware : 1);
+    settings.methods = ChosenMethods(opt);
+    settings.showProgress = true;
+    PlanRender(scene, &settings);
+    return settings;
+}
+
+// --pixel X Y: the pixel's ray tree as JSON. Returns the exit code.
+static int PixelTree(const Options *opt, const Scene *scene, const RenderSettings *settings) {
+    if (opt->pixelX >= settings->width || opt->pixelY >= settings->height) {
+        fprintf(stderr, "ray: --pixel: (%d, %d) is outside the %dx%d image\n", opt->pixelX,
+                opt->pixelY, settings->width, settings->height);
+        return 2;
+    }
+    printf("%s\n", PixelTreeJson(scene, settings, opt->pixelX, opt->pixelY).c_str());
+    return 0;
+}
+
+// A render (or --view) to the output file. The output is checked before the render, so a
+// mistake in it costs no time; a debug view is written beside the image, not over it
+// (reference_normal.png). Returns the exit code.
+static int RenderToFile(const Options *opt, const Scene *scene, const RenderSettings *settings,
+                        std::string defaultOutput, std::chrono::steady_clock::time_point start) {
+    if (opt->view && opt->output.empty())
+        defaultOutput = defaultOutput.substr(0, defaultOutput.size() - 4) + "_" +
+                        ViewName(opt->viewKind) + ".png";
+    std::string output = opt->output.empty() ? defaultOutput : opt->output, error;
+    std::vector<std::string> inputs;
+    if (opt->scene != "default" && opt->scene != "test")
+        inputs.push_back(opt->scene);
+    int status;
+    if (!CheckOutputPath(output, inputs, &status, &error)) {
+        fprintf(stderr, "ray: %s\n", error.c_str());
+        return status;
+    }
+    Image image;
+    RayStats stats = {0, 0, 0, 0, 0};
+    auto renderStart = std::chrono::steady_clock::now();
+    if (opt->view)
+        RenderView(scene, settings, opt->viewKind, &image);
+    else
+        Render(scene, settings, &image, &stats);
+    double renderSeconds = SecondsSince(renderStart);
+    if (!WriteImage(output.c_str(), &image, &error)) {
+        fprintf(stderr, "ray: %s\n", error.c_str());
+        return 3;
+    }
+    if (opt->stats)
+        PrintStats(&stats, settings, renderSeconds, SecondsSince(start));
+    return 0;
+}
+
+// The program: one mode per run (help, compare, probe, pixel tree, render or view).
 static int Run(int argc, char **argv) {
     auto start = std::chrono::steady_clock::now();
     Options opt;
-    std::string error;
+    std::string error, defaultOutput;
     if (!ParseOptions(argc, argv, &opt, &error)) {
         fprintf(stderr, "ray: %s\n", error.c_str());
         return 2;
@@ -151,68 +213,17 @@ static int Run(int argc, char **argv) {
     }
     if (opt.compare)
         return Compare(&opt);
-
     Scene scene;
-    std::string defaultOutput;
     if (!LoadScene(opt.scene, &scene, &defaultOutput, &error)) {
         fprintf(stderr, "ray: %s\n", error.c_str());
         return 2;
     }
-    RenderSettings settings;
-    settings.width = opt.width ? opt.width : scene.width;
-    settings.height = opt.height ? opt.height : scene.height;
-    settings.samplesPerPixel = opt.spp;
-    settings.sampling = (SampleMethod)opt.sampling;
-    settings.depth = opt.depth ? opt.depth : scene.depth;
-    unsigned hardware = std::thread::hardware_concurrency();
-    settings.threads = opt.threads ? opt.threads : (hardware ? (int)hardware : 1);
-    settings.methods = ChosenMethods(&opt);
-    settings.showProgress = true;
-    PlanRender(&scene, &settings);
-
+    RenderSettings settings = ChosenSettings(&opt, &scene);
     if (opt.probeRay || !opt.raysFile.empty())
         return Probe(&opt, &scene, &settings);
-    if (opt.pixel) {
-        if (opt.pixelX >= settings.width || opt.pixelY >= settings.height) {
-            fprintf(stderr, "ray: --pixel: (%d, %d) is outside the %dx%d image\n", opt.pixelX,
-                    opt.pixelY, settings.width, settings.height);
-            return 2;
-        }
-        printf("%s\n", PixelTreeJson(&scene, &settings, opt.pixelX, opt.pixelY).c_str());
-        return 0;
-    }
-
-    // The output is checked before the render, so a mistake in it costs no time. A debug view is
-    // written beside the image, not over it: reference_normal.png
-    if (opt.view && opt.output.empty())
-        defaultOutput = defaultOutput.substr(0, defaultOutput.size() - 4) + "_" +
-                        ViewName(opt.viewKind) + ".png";
-    std::string output = opt.output.empty() ? defaultOutput : opt.output;
-    std::vector<std::string> inputs;
-    if (opt.scene != "default" && opt.scene != "test")
-        inputs.push_back(opt.scene);
-    int status;
-    if (!CheckOutputPath(output, inputs, &status, &error)) {
-        fprintf(stderr, "ray: %s\n", error.c_str());
-        return status;
-    }
-
-    Image image;
-    RayStats stats = {0, 0, 0, 0, 0};
-    auto renderStart = std::chrono::steady_clock::now();
-    if (opt.view)
-        RenderView(&scene, &settings, opt.viewKind, &image);
-    else
-        Render(&scene, &settings, &image, &stats);
-    double renderSeconds = SecondsSince(renderStart);
-
-    if (!WriteImage(output.c_str(), &image, &error)) {
-        fprintf(stderr, "ray: %s\n", error.c_str());
-        return 3;
-    }
-    if (opt.stats)
-        PrintStats(&stats, &settings, renderSeconds, SecondsSince(start));
-    return 0;
+    if (opt.pixel)
+        return PixelTree(&opt, &scene, &settings);
+    return RenderToFile(&opt, &scene, &settings, defaultOutput, start);
 }
 
 // An allocation that fails (a scene of millions of shapes under a memory limit, an image of
