@@ -43,23 +43,40 @@ static int RecordRay(RayKind kind, const Ray *ray, TraceLog *log) {
     return (int)log->tree->size() - 1;
 }
 
+// What every shading function needs besides the surface: the world, how it is rendered, and
+// where the rays cast are counted (and recorded, for a ray tree).
+struct Shading {
+    const Scene *scene;
+    const RenderSettings *settings;
+    TraceLog *log;
+};
+
+// The surface being shaded: the ray that found it, the hit, its material, and where that ray
+// stands in its chain.
+struct Surface {
+    const Ray *ray;
+    const RayHit *hit;
+    const Material *m;
+    RayChain chain;
+};
+
 // Whether the segment from the hit point to the light is free of shapes (ShadowRay: every hit
-// with t in (0, 1) blocks). Without shapes that could block (Effects), no ray is needed at all.
-static bool LightIsVisible(const Scene *scene, const RenderSettings *settings, const RayHit *hit,
-                           const Light *light, TraceLog *log) {
+// with t in (tMin, 1) blocks). Without shapes that could block (Effects), no ray is needed.
+static bool LightIsVisible(const Shading *sh, const RayHit *hit, const Light *light) {
+    const Methods *methods = &sh->settings->methods;
     Ray shadow;
     RayStart start;
-    if (!settings->effects.shadows ||
-        !ShadowRay(hit, light->position, &settings->methods, &shadow, &start))
+    if (!sh->settings->effects.shadows ||
+        !ShadowRay(hit, light->position, methods, &shadow, &start))
         return true;
-    log->stats.shadow++;
-    if (!log->tree)
-        return !AnyHitFrom(scene, settings->methods, &shadow, &start, 1);
+    sh->log->stats.shadow++;
+    if (!sh->log->tree)
+        return !AnyHitFrom(sh->scene, *methods, &shadow, &start, 1);
 
     // Recording a ray tree: find the nearest blocker, so the tree can show which shape it is
-    int node = RecordRay(RAY_SHADOW, &shadow, log);
-    RayNode *n = &(*log->tree)[node];
-    n->hit = FindNearestHitFrom(scene, settings->methods, &shadow, &start, 1, &n->record);
+    int node = RecordRay(RAY_SHADOW, &shadow, sh->log);
+    RayNode *n = &(*sh->log->tree)[node];
+    n->hit = FindNearestHitFrom(sh->scene, *methods, &shadow, &start, 1, &n->record);
     n->light = n->hit ? color{0, 0, 0} : light->intensity;
     return !n->hit;
 }
@@ -67,41 +84,41 @@ static bool LightIsVisible(const Scene *scene, const RenderSettings *settings, c
 // The assignment handout's rule (`shading floor`): kd * max(ambient, S), where S sums I (N.L)
 // over the lights in front of the surface that no shape hides. A light behind the surface
 // (N.L <= 0) contributes nothing and costs no shadow ray (second handout).
-static color FloorColor(const Scene *scene, const RenderSettings *settings, const RayHit *hit,
-                        const Material *m, TraceLog *log) {
+static color FloorColor(const Shading *sh, const Surface *s) {
+    const RayHit *hit = s->hit;
     color sum = {0, 0, 0};
-    for (const Light &light : scene->lights) {
+    for (const Light &light : sh->scene->lights) {
         vec3 toLight = light.position - hit->point;
         real nDotL = Dot(hit->normal, toLight);
-        if (!(nDotL > 0) || !LightIsVisible(scene, settings, hit, &light, log))
+        if (!(nDotL > 0) || !LightIsVisible(sh, hit, &light))
             continue;
         sum = sum + (nDotL / SafeLength(toLight)) * light.intensity;
     }
-    color floor = {scene->ambient, scene->ambient, scene->ambient};
-    return m->diffuse * Max(floor, sum);
+    real ambient = sh->scene->ambient;
+    return s->m->diffuse * Max(color{ambient, ambient, ambient}, sum);
 }
 
 // The second handout's Phong lighting (`shading phong`):
 //   ka Ia + sum over visible lights with N.L > 0 of  Ii (kd (N.L) + ks max(0, R.V)^n),
 // R = -L + 2 (N.L) N the light's mirror direction, V toward the viewer, all unit vectors.
-// The N.L > 0 gate keeps a light below the horizon from making a highlight (HARD_CASES PH-1);
-// max(0, R.V) before pow keeps a fractional n from meeting a negative base (NaN, PH-2).
-static color PhongColor(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                        const RayHit *hit, const Material *m, TraceLog *log) {
-    color result = scene->ambient * m->ambient;
-    vec3 n = hit->normal, v = -SafeNormalize(ray->dir);
-    bool specular = settings->effects.specular && m->specular > 0;
-    for (const Light &light : scene->lights) {
-        vec3 l = SafeNormalize(light.position - hit->point);
+// The N.L > 0 gate keeps a light below the horizon from making a highlight; max(0, R.V) before
+// pow keeps a fractional n from meeting a negative base (a NaN).
+static color PhongColor(const Shading *sh, const Surface *s) {
+    const Material *m = s->m;
+    color result = sh->scene->ambient * m->ambient;
+    vec3 n = s->hit->normal, v = -SafeNormalize(s->ray->dir);
+    bool specular = sh->settings->effects.specular && m->specular > 0;
+    for (const Light &light : sh->scene->lights) {
+        vec3 l = SafeNormalize(light.position - s->hit->point);
         real nDotL = Dot(n, l);
-        if (!(nDotL > 0) || !LightIsVisible(scene, settings, hit, &light, log))
+        if (!(nDotL > 0) || !LightIsVisible(sh, s->hit, &light))
             continue;
         color term = nDotL * m->diffuse;
         if (specular) {
             vec3 r = (2 * nDotL) * n - l;
             real highlight = m->specular * std::pow(std::max(real(0), Dot(r, v)), m->shininess);
             term = term + color{highlight, highlight, highlight};
-            log->stats.specularTerms++;
+            sh->log->stats.specularTerms++;
         }
         result = result + light.intensity * term;
     }
@@ -177,61 +194,53 @@ real SchlickReflectance(real cosI, real eta) {
 // Sends the next ray of the chain from the hit point in direction dir, if it is allowed: its
 // number must not pass `depth`, and its colour, counted with `share` (the mirror fraction or
 // the Fresnel weight), must be able to change the pixel (kMinRayWeight). Otherwise black.
-static color FollowRay(const Scene *scene, const RenderSettings *settings, RayKind kind,
-                       const RayHit *hit, vec3 dir, real share, RayChain chain, TraceLog *log) {
-    RayChain next = {chain.number + 1, chain.weight * share};
-    if (next.number > settings->depth || next.weight < kMinRayWeight)
+static color FollowRay(const Shading *sh, const Surface *s, RayKind kind, vec3 dir, real share) {
+    RayChain next = {s->chain.number + 1, s->chain.weight * share};
+    if (next.number > sh->settings->depth || next.weight < kMinRayWeight)
         return {0, 0, 0};
     Ray ray;
     RayStart start;
-    LeaveSurface(hit, dir, &settings->methods, &ray, &start);
-    return TraceRay(scene, settings, kind, &ray, &start, next, log);
+    LeaveSurface(s->hit, dir, &sh->settings->methods, &ray, &start);
+    return TraceRay(sh->scene, sh->settings, kind, &ray, &start, next, sh->log);
 }
 
 // Clear glass: Fresnel's share R of the reflected ray plus 1 - R of the refracted one. Entering
 // (the ray arrives on the outward side) eta = 1 / ior, leaving eta = ior; under total internal
 // reflection R = 1 and no refracted ray is cast.
-static color GlassColor(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                        const RayHit *hit, const Material *m, RayChain chain, TraceLog *log) {
-    vec3 d = SafeNormalize(ray->dir), n = hit->normal;
-    real eta = hit->frontFace ? 1 / m->ior : m->ior;
-    real reflectance = settings->methods.fresnel == FRESNEL_SCHLICK
+static color GlassColor(const Shading *sh, const Surface *s) {
+    vec3 d = SafeNormalize(s->ray->dir), n = s->hit->normal;
+    real eta = s->hit->frontFace ? 1 / s->m->ior : s->m->ior;
+    real reflectance = sh->settings->methods.fresnel == FRESNEL_SCHLICK
                            ? SchlickReflectance(-Dot(d, n), eta)
                            : FresnelReflectance(-Dot(d, n), eta);
-    vec3 mirrored = Reflect(d, n);
-    color result = reflectance * FollowRay(scene, settings, RAY_REFLECTION, hit, mirrored,
-                                           reflectance, chain, log);
+    color result = reflectance * FollowRay(sh, s, RAY_REFLECTION, Reflect(d, n), reflectance);
     vec3 refracted;
     if (reflectance < 1 && Refract(d, n, eta, &refracted))
-        result = result + (1 - reflectance) * FollowRay(scene, settings, RAY_REFRACTION, hit,
-                                                        refracted, 1 - reflectance, chain, log);
+        result = result +
+                 (1 - reflectance) * FollowRay(sh, s, RAY_REFRACTION, refracted, 1 - reflectance);
     return result;
 }
 
 // The surface's own colour: glass, or lit by the scene's lighting rule.
-static color SurfaceColor(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                          const RayHit *hit, const Material *m, RayChain chain, TraceLog *log) {
-    if (m->ior > 0)
-        return GlassColor(scene, settings, ray, hit, m, chain, log);
-    if (scene->shading == SHADING_PHONG)
-        return PhongColor(scene, settings, ray, hit, m, log);
-    return FloorColor(scene, settings, hit, m, log);
+static color SurfaceColor(const Shading *sh, const Surface *s) {
+    if (s->m->ior > 0)
+        return GlassColor(sh, s);
+    if (sh->scene->shading == SHADING_PHONG)
+        return PhongColor(sh, s);
+    return FloorColor(sh, s);
 }
 
 // Mixes the surface's colour with the mirror image: (1 - K) own + K reflected for `mirror K`.
 // A perfect mirror (K = 1) never shows its own colour, so it casts no shadow rays; a chain that
 // has used up `depth` rays ends in black (FollowRay).
-static color ShadeHit(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                      const RayHit *hit, RayChain chain, TraceLog *log) {
-    const Material *m = &scene->materials[hit->material];
+static color ShadeHit(const Shading *sh, const Surface *s) {
+    real k = s->m->mirror;
     color result = {0, 0, 0};
-    if (m->mirror < 1)
-        result = (1 - m->mirror) * SurfaceColor(scene, settings, ray, hit, m, chain, log);
-    if (m->mirror > 0) {
-        vec3 r = Reflect(ray->dir, hit->normal);
-        result = result + m->mirror * FollowRay(scene, settings, RAY_REFLECTION, hit, r, m->mirror,
-                                                chain, log);
-    }
+    if (k < 1)
+        result = (1 - k) * SurfaceColor(sh, s);
+    if (k > 0)
+        result =
+            result + k * FollowRay(sh, s, RAY_REFLECTION, Reflect(s->ray->dir, s->hit->normal), k);
     return result;
 }
 
@@ -250,7 +259,9 @@ color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind,
     if (found) {
         int parent = log->current;
         log->current = node;
-        result = ShadeHit(scene, settings, ray, &hit, chain, log);
+        Shading sh = {scene, settings, log};
+        Surface surface = {ray, &hit, &scene->materials[hit.material], chain};
+        result = ShadeHit(&sh, &surface);
         log->current = parent;
     }
     if (node >= 0) { // the tree may have grown (and moved) during the recursion
