@@ -1,4 +1,4 @@
-// options.cpp -- the command line: `ray [SCENE] [options]`, as pinned in SPEC.md section 2.
+// options.cpp -- the command line: `ray [SCENE] [options]`, as the README describes it.
 //
 // A table of the options and how many values each takes, a parser per value kind, and the
 // checks of what goes together. Nothing here prints; main does (ray.cpp).

@@ -1,7 +1,7 @@
 // ray.cpp -- the program: reads the command line, loads the scene, and renders it, probes it or
 // compares two images.
 //
-// `ray [SCENE] [options]`, as pinned in SPEC.md section 2. Errors are values until they reach
+// `ray [SCENE] [options]`, as the README describes it. Errors are values until they reach
 // main, which prints one line `ray: MESSAGE` and exits with 2 (bad usage or input) or 3 (I/O).
 #include "options.h"
 

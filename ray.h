@@ -167,7 +167,7 @@ struct Light {
     color intensity;
 };
 
-// The two lighting rules of SPEC section 3.
+// The two lighting rules of the README's scene format.
 enum ShadingModel {
     SHADING_FLOOR, // the assignment handout's kd * max(ambient, sum of I (N.L))
     SHADING_PHONG  // the second handout's ka Ia + sum of I (kd (N.L) + ks max(0, R.V)^n)
@@ -618,7 +618,8 @@ bool ParseReal(const std::string &token, real *value, std::string *error);
 // otherwise. Shared by the scene reader and the command line.
 bool ParseWholeNumber(const std::string &token, int lo, int hi, int *value, std::string *error);
 
-// ---- scene_file.cpp: scene files (SPEC section 3) -------------------------------------------
+// ---- scene_file.cpp: scene files (the README, "Scene files")
+// -------------------------------------------
 
 // The scene a file starts from: nothing in it, 512 x 512, `camera perspective 0 0 0 2 2`,
 // ambient 0.2, floor shading, black background, depth 10.
@@ -631,7 +632,8 @@ bool ReadSceneFile(const char *path, Scene *scene, std::string *error);
 bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
                     std::string *error);
 
-// ---- probe.cpp: probes and ray trees (SPEC section 4) -----------------------------------------
+// ---- probe.cpp: probes and ray trees (the README, "Probes and debugging")
+// -----------------------------------------
 
 // Reads a probe line `OX OY OZ DX DY DZ`. Returns false with *error for a bad line; sets *blank
 // (and returns true) for a blank or comment line.
@@ -659,7 +661,8 @@ void RenderView(const Scene *scene, const RenderSettings *settings, ViewKind vie
 
 // ---- scene_default.cpp, scene_test.cpp: the built-in scenes ----------------------------------
 
-void BuildDefaultScene(Scene *scene); // the assignment scene (SPEC section 6)
+void BuildDefaultScene(Scene *scene); // the assignment scene (the handout's scene;
+                                      // scenes/reference.scene holds it as a file)
 void BuildTestScene(Scene *scene);    // rt's own test scene
 
 #endif

@@ -1,4 +1,5 @@
-// scene_default.cpp -- the assignment scene (SPEC section 6), as data.
+// scene_default.cpp -- the assignment scene (the handout's scene; scenes/reference.scene holds it
+// as a file), as data.
 //
 // 512 x 512, the handout's Perspective camera at the origin (screen 2 units wide, 2 away), one
 // white point light, ambient floor 0.2, black background, at most 10 rays in a chain: two mirror

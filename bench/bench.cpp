@@ -1,4 +1,4 @@
-// bench/bench.cpp -- what accuracy costs in time (`make bench`, issue 6).
+// bench/bench.cpp -- what accuracy costs in time (`make bench`).
 //
 //   bench rows DIR      renders every row this build can (double: references, anti-aliasing,
 //                       triangle and sphere methods, depth; both builds: precision) and prints

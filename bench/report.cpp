@@ -222,7 +222,7 @@ int ReportMain(const std::string &dir) {
           "scene is rendered at 512 x 512, the test scene at 256 x 256.\n\n## Conclusions\n\n";
     Conclusions(md, rs, "assignment");
     Conclusions(md, rs, "test");
-    md << "## Numerical hard cases (HARD_CASES.md rows passed)\n\n| routines and precision | "
+    md << "## Numerical hard cases (rows of the catalogue passed)\n\n| routines and precision | "
           "passed |\n| --- | --- |\n";
     for (const std::string &s : suite) {
         size_t space = s.rfind(' ');

@@ -1,5 +1,5 @@
 // tests/hard_cases.cpp -- the sphere (SPH), triangle (TRI) and self-intersection (OFF) rows of
-// ../shared/HARD_CASES.md, each with its exact expected result. The refraction (REF) and Phong
+// the catalogue in docs/robustness.md, each with its exact expected result. The refraction (REF) and Phong
 // (PH) rows test shading, not intersection, and live in test_effects.cpp.
 //
 // Expected values are the catalogue's (computed there with 50-digit arithmetic); where a sweep

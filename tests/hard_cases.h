@@ -1,4 +1,4 @@
-// tests/hard_cases.h -- the catalogue of numerical hard cases (../shared/HARD_CASES.md) as code.
+// tests/hard_cases.h -- the catalogue of numerical hard cases (docs/robustness.md) as code.
 //
 // Each row of the catalogue is one case with its exact expected result. The suite takes the
 // sphere and triangle routines to test as function pointers, so `make test` runs it on the

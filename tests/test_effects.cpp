@@ -135,12 +135,12 @@ static bool Near(vec3 a, vec3 b, double tolerance) {
 }
 
 static void TestGlass() {
-    // HARD_CASES REF-1: O = (-5, 0.5, 0), d = (1, 0, 0) enters at (-0.866, 0.5, 0) with
+    // hard case REF-1: O = (-5, 0.5, 0), d = (1, 0, 0) enters at (-0.866, 0.5, 0) with
     // sin(i) = 0.5, so sin(t) = 1/3: T = (0.98316324759439270, -0.18272938619621880, 0)
     vec3 n = {-std::sqrt(real(0.75)), real(0.5), 0}, t;
     CHECK(Refract({1, 0, 0}, n, 1 / real(1.5), &t) &&
               Near(t, {0.9831632475943927, -0.1827293861962188, 0}, 16 * kRelTol),
-          "HARD_CASES REF-1: Snell's law entering glass: sin 30 deg / 1.5 = sin 19.47 deg");
+          "hard case REF-1: Snell's law entering glass: sin 30 deg / 1.5 = sin 19.47 deg");
     // The tree: primary -> refraction (inside) -> refraction (out), exit direction
     // (0.93321994284070624, -0.35930563352720894, 0): deviated 21.0576 deg in total
     std::vector<RayNode> tree = GlassTree({-5, 0.5, 0}, {1, 0, 0});
@@ -155,46 +155,46 @@ static void TestGlass() {
     if (out > 0)
         CHECK(Near(Normalize(tree[out].ray.dir), {0.93321994284070624, -0.35930563352720894, 0},
                    64 * kRelTol),
-              "HARD_CASES REF-1: exit direction after two refractions, within 1e-14 in double");
+              "hard case REF-1: exit direction after two refractions, within 1e-14 in double");
 
-    // HARD_CASES REF-2: from inside at (0, 0.9, 0) along +x, the wall is met at t = 0.43589 with
+    // hard case REF-2: from inside at (0, 0.9, 0) along +x, the wall is met at t = 0.43589 with
     // sin(i) = 0.9 > 1/1.5: total internal reflection, R = 1, no refracted ray; the reflected
     // direction is (0.62, -0.78460180983732118, 0)
     CHECK(!Refract({1, 0, 0}, {-real(0.43588989435406731), -real(0.9), 0}, real(1.5), &t),
-          "HARD_CASES REF-2: Snell's law: sin(t) = 1.5 * 0.9 > 1 is total internal reflection");
+          "hard case REF-2: Snell's law: sin(t) = 1.5 * 0.9 > 1 is total internal reflection");
     tree = GlassTree({0, 0.9, 0}, {1, 0, 0});
     CHECK(tree.size() > 1 && tree[1].kind == RAY_REFLECTION && tree[1].parent == 0,
           "inside the glass at 64 deg: a reflection ray");
     bool refracted = false;
     for (const RayNode &node : tree)
         refracted = refracted || (node.parent == 0 && node.kind == RAY_REFRACTION);
-    CHECK(!refracted, "HARD_CASES REF-2: total internal reflection casts no refraction ray");
+    CHECK(!refracted, "hard case REF-2: total internal reflection casts no refraction ray");
     if (tree.size() > 1) {
         CHECK_NEAR(tree[0].record.t, 0.43588989435406731, 4 * kRelTol, "TIR: wall met at t");
         CHECK(Near(Normalize(tree[1].ray.dir), {0.62, -0.78460180983732118, 0}, 16 * kRelTol),
-              "HARD_CASES REF-2: reflected direction (0.62, -0.7846, 0)");
+              "hard case REF-2: reflected direction (0.62, -0.7846, 0)");
     }
 
-    // HARD_CASES REF-3: exact Fresnel leaving glass (eta = 1.5) for sin(i) 0, 0.3, 0.6, 0.65, 0.66
+    // hard case REF-3: exact Fresnel leaving glass (eta = 1.5) for sin(i) 0, 0.3, 0.6, 0.65, 0.66
     const double sines[] = {0, 0.3, 0.6, 0.65, 0.66};
     const double reflectance[] = {0.04, 0.04091892868995756, 0.1141411002213538, 0.3031021167517616,
                                   0.4593127663784946};
     for (int k = 0; k < 5; k++)
         CHECK_NEAR(FresnelReflectance(real(std::sqrt(1 - sines[k] * sines[k])), real(1.5)),
                    reflectance[k], 1e-12 + 64 * kRelTol,
-                   "HARD_CASES REF-3: Fresnel leaving glass at sin(i) = " +
+                   "hard case REF-3: Fresnel leaving glass at sin(i) = " +
                        std::to_string(sines[k]));
     CHECK(FresnelReflectance(real(0.6), real(1.5)) == 1, "Fresnel past the critical angle is 1");
     CHECK_NEAR(FresnelReflectance(real(std::sqrt(1 - 0.99 * 0.99)), 1 / real(1.5)),
                0.4593127663784964, 1e-12 + 64 * kRelTol, "Fresnel entering glass at sin(i) 0.99");
 
-    // HARD_CASES REF-4: head-on with a normalised normal whose dot with -n rounds past 1
+    // hard case REF-4: head-on with a normalised normal whose dot with -n rounds past 1
     vec3 n4 = Normalize({-0.9433050469559874, 0.6715302078397394, -0.13446586418989326});
     vec3 uv = -n4;
     CHECK(Refract(uv, n4, 1 / real(1.5), &t) && IsFinite(t) && Near(t, uv, 4 * kRelTol),
-          "HARD_CASES REF-4: head-on refraction: no NaN, the ray goes straight through");
+          "hard case REF-4: head-on refraction: no NaN, the ray goes straight through");
     CHECK(std::isfinite(FresnelReflectance(-Dot(uv, n4), 1 / real(1.5))),
-          "HARD_CASES REF-4: head-on Fresnel: no NaN");
+          "hard case REF-4: head-on Fresnel: no NaN");
 }
 
 // The floor of test_shade.cpp, lit by Phong: kd = 0.5 (so ka = 0.5), ks = 0.25, n as given,
@@ -227,15 +227,15 @@ static void TestPhong() {
     c = PhongAt({0, 5, 0}, {10, 10, 0}, 2, &stats);
     CHECK_NEAR(c.x, 0.1 + 0.5 * std::sqrt(0.5) + 0.125, 8 * kRelTol,
                "Phong at 45 deg, n = 2: 0.1 + 0.35355 + 0.125");
-    // HARD_CASES PH-1: light below the surface: no diffuse, no highlight, ambient 0.1 only
+    // hard case PH-1: light below the surface: no diffuse, no highlight, ambient 0.1 only
     c = PhongAt({0, 5, 0}, {0, -10, 1}, 10, &stats);
     CHECK_NEAR(c.x, 0.1, kRelTol,
-               "HARD_CASES PH-1: light below the horizon: ambient only, no highlight");
+               "hard case PH-1: light below the horizon: ambient only, no highlight");
     CHECK(stats.specularTerms == 0 && stats.shadow == 0, "no specular term, no shadow ray");
-    // HARD_CASES PH-2: R.V < 0 with n = 2.5: pow(max(0, R.V), n) = 0, never NaN. The light is
+    // hard case PH-2: R.V < 0 with n = 2.5: pow(max(0, R.V), n) = 0, never NaN. The light is
     // near the horizon at +x (N.L = 0.0995) and the eye is also on the +x side
     c = PhongAt({5, 5, 0}, {10, 1, 0}, real(2.5), &stats);
-    CHECK(IsFinite(c), "HARD_CASES PH-2: R.V < 0 with a fractional exponent: no NaN");
+    CHECK(IsFinite(c), "hard case PH-2: R.V < 0 with a fractional exponent: no NaN");
     CHECK_NEAR(c.x, 0.1 + 0.5 / std::sqrt(101.0), 8 * kRelTol,
                "R.V < 0: ambient + diffuse only, 0.1 + 0.5 * 0.0995");
 }

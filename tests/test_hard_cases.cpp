@@ -1,4 +1,4 @@
-// tests/test_hard_cases.cpp -- every sphere, triangle and offset row of HARD_CASES.md must pass
+// tests/test_hard_cases.cpp -- every sphere, triangle and offset row of the hard-case catalogue (docs/robustness.md) must pass
 // with rt's default routines, in the double and in the float test program (rows that belong to
 // one precision only run there). The REF and PH rows are in test_effects.cpp.
 #include "hard_cases.h"
@@ -8,7 +8,7 @@ void TestHardCases() {
     std::vector<HardCaseResult> results;
     RunHardCases(IntersectSphere, IntersectTriangle, &results);
     for (const HardCaseResult &r : results)
-        CHECK(r.passed, "HARD_CASES " + r.id + (r.passed ? "" : ": " + r.detail));
+        CHECK(r.passed, "hard case " + r.id + (r.passed ? "" : ": " + r.detail));
     CHECK(results.size() >= (sizeof(real) == 8 ? 21u : 15u),
           "the hard-case suite ran its rows (" + std::to_string(results.size()) + ")");
 }

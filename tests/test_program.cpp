@@ -1,4 +1,4 @@
-// tests/test_program.cpp -- the program from the outside, as SPEC.md section 2 pins it.
+// tests/test_program.cpp -- the program from the outside, as the README describes it.
 //
 // Runs ./ray (or $RAY) in a fresh temporary directory: the default output name, the PNG's size
 // and format, identical bytes for any thread count, the --stats lines, and bad input: exit

@@ -122,7 +122,7 @@ static void TestSceneVariations() {
           "a light without a colour is white");
     CHECK(scene.shading == SHADING_PHONG, "shading phong");
 
-    // An empty file is a valid scene: the defaults of SPEC section 3
+    // An empty file is a valid scene: the defaults of the README's scene format
     ok = ParseSceneText("", "e.scene", &scene, &error);
     CHECK(ok && scene.width == 512 && scene.camera.kind == CAMERA_PERSPECTIVE &&
               scene.camera.perspective.distance == 2 && scene.camera.perspective.width == 2 &&
