@@ -1,6 +1,7 @@
-// tests/hard_cases.cpp -- the sphere (SPH), triangle (TRI) and self-intersection (OFF) rows of
-// the catalogue in docs/robustness.md, each with its exact expected result. The refraction (REF) and Phong
-// (PH) rows test shading, not intersection, and live in test_effects.cpp.
+// tests/hard_cases.cpp -- rt's numerical hard cases for spheres (SPH), triangles (TRI) and
+// self-intersection (OFF), each with its exact expected result; their families are described in
+// docs/robustness.md. The refraction (REF) and Phong (PH) cases test shading, not intersection,
+// and live in test_effects.cpp.
 //
 // Expected values are the catalogue's (computed there with 50-digit arithmetic); where a sweep
 // needs many expected values they are computed here in long double from the same inputs.

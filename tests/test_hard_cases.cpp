@@ -1,6 +1,6 @@
-// tests/test_hard_cases.cpp -- every sphere, triangle and offset row of the hard-case catalogue (docs/robustness.md) must pass
-// with rt's default routines, in the double and in the float test program (rows that belong to
-// one precision only run there). The REF and PH rows are in test_effects.cpp.
+// tests/test_hard_cases.cpp -- every sphere, triangle and offset hard case (hard_cases.cpp) must
+// pass with rt's default routines, in the double and in the float test program (cases that belong
+// to one precision only run there). The REF and PH cases are in test_effects.cpp.
 #include "hard_cases.h"
 #include "test.h"
 
