@@ -6,6 +6,7 @@
 // 2/255) at scales 1e-4, 1 and 1e4 and moved far from the origin, where a method's failures show
 // as acne, leaks and cracks. Prints Markdown.
 #include "../tests/hard_cases.h"
+#include "../tests/robust_scenes.h"
 
 #include <chrono>
 #include <cstdio>
@@ -58,22 +59,6 @@ static void TimeRoutine(const char *name, Routine routine, Robust robust) {
     printf("| %s | %.1f | %.1f |", name, h, m);
 }
 
-// The test scene with every length times `scale` and moved by `shift` along (1, -1, 1).
-static Scene Moved(const Scene &original, real scale, real shift) {
-    Scene s = original;
-    auto move = [&](vec3 p) { return scale * p + vec3{shift, -shift, shift}; };
-    for (Sphere &sphere : s.spheres)
-        sphere.center = move(sphere.center), sphere.radius *= scale;
-    for (Triangle &t : s.triangles)
-        t = {move(t.a), move(t.b), move(t.c), t.material};
-    for (Light &light : s.lights)
-        light.position = move(light.position);
-    s.camera.perspective.eye = move(s.camera.perspective.eye);
-    s.camera.perspective.distance *= scale;
-    s.camera.perspective.width *= scale;
-    return s;
-}
-
 static Image RenderWith(const Scene *scene, Methods methods) {
     RenderSettings settings = {128, 128, 1, SAMPLES_GRID, scene->depth, 2, methods, false, {}, {}};
     Image image;
@@ -98,7 +83,7 @@ static void ArtefactCells(const Scene &test, Methods methods) {
     const real placements[][2] = {
         {real(1e-4), 0}, {1, 0}, {real(1e4), 0}, {1, kDouble ? real(1e9) : real(1e3)}};
     for (const auto &p : placements) {
-        Scene scene = Moved(test, p[0], p[1]);
+        Scene scene = TransformedScene(test, p[0], {p[1], -p[1], p[1]});
         printf(" %ld |",
                PixelsOff(RenderWith(&scene, kRobustMethods), RenderWith(&scene, methods)));
     }

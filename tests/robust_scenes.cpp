@@ -119,3 +119,20 @@ BoxLeaks CountBoxLeaks(double length, bool turn, int rays, uint64_t seed) {
     }
     return leaks;
 }
+
+Scene TransformedScene(const Scene &original, real scale, vec3 shift) {
+    Scene s = original;
+    auto move = [&](vec3 p) { return scale * p + shift; };
+    for (Sphere &sp : s.spheres) {
+        sp.center = move(sp.center);
+        sp.radius *= scale;
+    }
+    for (Triangle &t : s.triangles)
+        t = {move(t.a), move(t.b), move(t.c), t.material};
+    for (Light &l : s.lights)
+        l.position = move(l.position);
+    s.camera.perspective.eye = move(s.camera.perspective.eye);
+    s.camera.perspective.distance *= scale;
+    s.camera.perspective.width *= scale;
+    return s;
+}

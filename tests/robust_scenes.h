@@ -36,4 +36,8 @@ vec3 UnitDirection(real u1, real u2);
 // `glass` makes the big sphere glass of index 1.5.
 std::string AssignmentText(double scale, double shift, const char *camera, bool glass);
 
+// A scene with every position and length (of shapes, lights and a perspective camera) multiplied
+// by `scale`, then moved by `shift`.
+Scene TransformedScene(const Scene &original, real scale, vec3 shift);
+
 #endif

@@ -3,25 +3,8 @@
 // The assignment scene scaled by 1e-4 and 1e4 and moved far from the origin must render the
 // image it renders in place (99.8% of pixels within 2/255); random scenes with degenerate,
 // coincident, tiny and huge shapes must render finite colours everywhere.
+#include "robust_scenes.h"
 #include "test.h"
-
-// The scene with every position and length multiplied by `scale`, then moved by `shift`.
-static Scene Transformed(const Scene &original, real scale, vec3 shift) {
-    Scene s = original;
-    auto move = [&](vec3 p) { return scale * p + shift; };
-    for (Sphere &sp : s.spheres) {
-        sp.center = move(sp.center);
-        sp.radius *= scale;
-    }
-    for (Triangle &t : s.triangles)
-        t = {move(t.a), move(t.b), move(t.c), t.material};
-    for (Light &l : s.lights)
-        l.position = move(l.position);
-    s.camera.perspective.eye = move(s.camera.perspective.eye);
-    s.camera.perspective.distance *= scale;
-    s.camera.perspective.width *= scale;
-    return s;
-}
 
 static void TestScaleInvariance() {
     Scene scene;
@@ -45,7 +28,7 @@ static void TestScaleInvariance() {
     for (const auto &v : variants) {
         if (v.doubleOnly && sizeof(real) != sizeof(double))
             continue;
-        Scene moved = Transformed(scene, v.scale, v.shift);
+        Scene moved = TransformedScene(scene, v.scale, v.shift);
         Image image;
         Render(&moved, &settings, &image, &stats);
         double share = ShareAlike(original, image);
