@@ -173,6 +173,34 @@ static std::string LinkTarget(std::string path) {
     return path;
 }
 
+// Writes the image into a new temporary file (*temporary, made from its pattern) with the mode
+// the file it will replace has (`mode`); false with *why. mkstemp makes a file readable by its
+// owner only, hence the chmod.
+static bool WriteTemporary(std::string *temporary, const std::string &target, mode_t mode,
+                           const Image *image, std::string *why) {
+    int fd = mkstemp(&(*temporary)[0]);
+    FILE *file = fd >= 0 ? fdopen(fd, "wb") : nullptr;
+    if (!file) {
+        *why = strerror(errno);
+        if (fd >= 0) {
+            close(fd);
+            unlink(temporary->c_str());
+        }
+        temporary->clear();
+        return false;
+    }
+    bool written = Encode(file, target, image, why);
+    if (fclose(file) != 0 && written) { // fclose flushes: a full disk shows up here
+        *why = strerror(errno);
+        written = false;
+    }
+    if (written && chmod(temporary->c_str(), mode) != 0) {
+        *why = strerror(errno);
+        written = false;
+    }
+    return written;
+}
+
 bool WriteImage(const char *path, const Image *image, std::string *error) {
     struct stat info;
     bool exists = stat(path, &info) == 0;
@@ -183,39 +211,20 @@ bool WriteImage(const char *path, const Image *image, std::string *error) {
     std::string target = LinkTarget(path), why;
     std::string folder = target.substr(0, target.find_last_of('/') + 1);
     std::string temporary = folder + ".ray-XXXXXX"; // short: any name that fits, fits beside it
+    mode_t mask = umask(0);
+    umask(mask);
     sigset_t previous;
     struct sigaction fileSize, ignore = {};
     ignore.sa_handler = SIG_IGN;
     sigaction(SIGXFSZ, &ignore, &fileSize); // over a file-size limit: EFBIG, not a dead process
     HoldStopSignals(&previous);
-    int fd = mkstemp(&temporary[0]);
-    FILE *file = fd >= 0 ? fdopen(fd, "wb") : nullptr;
-    bool written = file && Encode(file, target, image, &why);
-    if (!file)
-        why = strerror(errno);
-    if (file && fclose(file) != 0 && written) { // fclose flushes: a full disk shows up here
-        why = strerror(errno);
-        written = false;
-    } else if (!file && fd >= 0) {
-        close(fd);
-    }
-    // mkstemp makes the file readable by its owner only: give it the mode the replaced file had,
-    // or the usual one
-    mode_t mask = umask(0);
-    umask(mask);
-    if (written && chmod(temporary.c_str(), exists ? info.st_mode & 07777 : 0666 & ~mask) != 0) {
-        why = strerror(errno);
-        written = false;
-    }
-    if (written && StopSignalPending()) {
-        why = "interrupted";
-        written = false;
-    }
-    if (written && rename(temporary.c_str(), target.c_str()) != 0) {
-        why = strerror(errno);
-        written = false;
-    }
-    if (!written && fd >= 0)
+    bool written = WriteTemporary(&temporary, target, exists ? info.st_mode & 07777 : 0666 & ~mask,
+                                  image, &why);
+    if (written && StopSignalPending())
+        why = "interrupted", written = false;
+    if (written && rename(temporary.c_str(), target.c_str()) != 0)
+        why = strerror(errno), written = false;
+    if (!written && !temporary.empty())
         unlink(temporary.c_str());
     pthread_sigmask(SIG_SETMASK, &previous, nullptr); // a held signal is delivered here
     sigaction(SIGXFSZ, &fileSize, nullptr);
