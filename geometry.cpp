@@ -84,7 +84,7 @@ static bool SolveSphere(vec3 f, vec3 d, real r, real tMin, real tMax, real *tHit
 // Each root is then t' = t 2^(kr - kd). Powers of two are exact, so where nothing over- or
 // underflowed this gives the very bits of the unscaled arithmetic. No root is discarded as "too
 // close to 0": a ray that leaves this sphere starts outside its rounding error (OffsetRayOrigin),
-// so c0 has the right sign and the root it would re-hit is negative; a probe that starts a hair
+// so C has the right sign and the root it would re-hit is negative; a probe that starts a hair
 // outside the sphere still sees it (a hit at t = 3e-11).
 bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
     if (!(s->radius > 0) || !std::isfinite(s->radius))

@@ -4,9 +4,10 @@
 // the variables A..M), and the second handout's triangle (the plane's t, then the signs of three
 // cross products). Chosen by `--methods handout`, `--sphere textbook`, `--triangle cramer|plane`;
 // rt's defaults are the robust forms (geometry.cpp, watertight.cpp, plane.cpp), and the README's
-// "Differences from the handouts" says what each buys. The epsilons here are the lesson: each
-// method is what a careful student writes. What is added is only what every method needs to be
-// used at all: an honest bound on its hit point's error, measured, for rays that leave it.
+// "Differences from the handouts" says what each buys. Each method is what a careful student
+// writes, its hit point o + t d included. What is added is only what every method needs to be
+// used at all: an honest bound on its hit point's error, measured, for rays that leave it, and
+// no hit where the point is not a number.
 #include "ray.h"
 
 // The assignment handout's sphere test, as the slide writes it: A t^2 + B t + C = 0 with
@@ -27,33 +28,35 @@ bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tM
         t = (-B + std::sqrt(discriminant)) / (2 * A);
     if (!(t > tMin && t < tMax))
         return false;
-    hit->t = t;
-    hit->point = ray->origin + t * d;
-    vec3 local = hit->point - s->center;
+    vec3 point = ray->origin + t * d, local = point - s->center;
     vec3 normal = (1 / s->radius) * local;
     real offSphere = std::fabs(SafeLength(local) - s->radius) + Gamma(4) * SafeLength(local);
-    hit->pointError = offSphere * Abs(normal) + Gamma(2) * Abs(hit->point);
+    if (!IsFinite(point) || !IsFinite(normal) || !std::isfinite(offSphere))
+        return false; // beyond the range of numbers: the quadratic has no answer there
+    hit->t = t;
+    hit->point = point;
+    hit->pointError = offSphere * Abs(normal) + Gamma(2) * Abs(point);
     SetFaceNormal(ray, SafeNormalize(normal), hit);
     hit->material = s->material;
     hit->shape = SHAPE_SPHERE;
     return true;
 }
 
-// Fills the hit record of a triangle hit at ray parameter t with barycentric coordinates
-// (b0, b1, b2) of the corners a, b, c; false (and *hit untouched) for a zero-area triangle. The
-// point is the barycentric combination, not o + t d: it lies on the triangle within
-// gamma(7) sum |b_i p_i| per axis (pbrt-v4 §6.8.5).
-static bool SetTriangleHit(const Triangle *tri, const Ray *ray, real t, real b0, real b1, real b2,
-                           RayHit *hit) {
-    // Return no intersection if the triangle is degenerate (zero area): it has no normal
-    vec3 n = SafeNormalize(Cross(tri->b - tri->a, tri->c - tri->a));
-    if (!(MaxComponent(n) > 0) || !IsFinite(n))
+// The hit record of a handout triangle test at ray parameter t: the point o + t d, as a student
+// computes it, and its honest error bound, measured: how far that point is from the triangle's
+// plane, plus its own rounding. False (and *hit untouched) for a triangle with no area, or a
+// point that is not a number.
+static bool SetHandoutTriangleHit(const Triangle *tri, const Ray *ray, real t, RayHit *hit) {
+    vec3 unit = SafeNormalize(Cross(tri->b - tri->a, tri->c - tri->a));
+    vec3 p = ray->origin + t * ray->dir;
+    real offPlane =
+        std::fabs(Dot(unit, p - tri->a)) + Gamma(4) * (SafeLength(p) + SafeLength(tri->a));
+    if (!(MaxComponent(unit) > 0) || !IsFinite(unit) || !IsFinite(p) || !std::isfinite(offPlane))
         return false;
-    vec3 p0 = b0 * tri->a, p1 = b1 * tri->b, p2 = b2 * tri->c;
     hit->t = t;
-    hit->point = p0 + p1 + p2;
-    hit->pointError = Gamma(7) * (Abs(p0) + Abs(p1) + Abs(p2));
-    SetFaceNormal(ray, n, hit);
+    hit->point = p;
+    hit->pointError = offPlane * Abs(unit) + Gamma(2) * Abs(p);
+    SetFaceNormal(ray, unit, hit);
     hit->material = tri->material;
     hit->shape = SHAPE_TRIANGLE;
     return true;
@@ -90,7 +93,7 @@ bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, rea
     if (beta < 0 || beta > 1 - gamma)
         return false;
 
-    return SetTriangleHit(tri, ray, t, 1 - beta - gamma, beta, gamma, hit);
+    return SetHandoutTriangleHit(tri, ray, t, hit);
 }
 
 // The second handout's triangle test, in two steps. First the plane: n = (b - a) x (c - a) and
@@ -117,18 +120,5 @@ bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real
     if (Component(Cross(b - a, p - a), k) * nk < 0 || Component(Cross(c - b, p - b), k) * nk < 0 ||
         Component(Cross(a - c, p - c), k) * nk < 0)
         return false;
-    vec3 unit = SafeNormalize(n);
-    hit->t = t;
-    hit->point = p;
-    real offPlane = std::fabs(Dot(unit, p - a)) + Gamma(4) * (SafeLength(p) + SafeLength(a));
-    hit->pointError = offPlane * Abs(unit) + Gamma(2) * Abs(p);
-    SetFaceNormal(ray, unit, hit);
-    hit->material = tri->material;
-    hit->shape = SHAPE_TRIANGLE;
-    return true;
+    return SetHandoutTriangleHit(tri, ray, t, hit);
 }
-
-// The first step of IntersectSphere, small enough to sit inside the shape loop: true if the
-// ray's line misses the sphere. It is the same expression IntersectSphere rejects on (there
-// rescaled by powers of two, which changes no sign), so the two agree, and most spheres a ray
-// meets end here.

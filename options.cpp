@@ -99,11 +99,15 @@ static bool ParseSelfHit(const std::string &word, Options *opt, std::string *err
         return false;
     if (equals == std::string::npos)
         return true;
+    if (name != "epsilon") {
+        *error = "--self-hit: only epsilon takes a value, as in epsilon=1e-3 (not '" + word + "')";
+        return false;
+    }
     real e;
-    if (name != "epsilon" || !ParseReal(word.substr(equals + 1), &e, error) || !(e > 0)) {
-        *error =
-            "--self-hit: only epsilon takes a value, a distance > 0, as in epsilon=1e-3 (not '" +
-            word + "')";
+    if (!ParseReal(word.substr(equals + 1), &e, error) || !(e > 0)) {
+        *error = "--self-hit epsilon=E: E must be a distance > 0 that a number of this build can "
+                 "hold, as in epsilon=1e-3 (not '" +
+                 word.substr(equals + 1) + "')";
         return false;
     }
     opt->epsilon = e;

@@ -129,7 +129,7 @@ enum ShapeKind { SHAPE_SPHERE, SHAPE_TRIANGLE };
 // ray leaving this point computes a safe origin.
 struct RayHit {
     real t;          // ray parameter of the hit, in units of the ray's own dir
-    vec3 point;      // hit point, computed on the surface (not as origin + t * dir)
+    vec3 point;      // hit point (on the surface for a sphere; o + t d for a triangle)
     vec3 normal;     // unit geometric normal, turned to face the incoming ray
     bool frontFace;  // the ray arrived on the outward side
     int material;    // index into scene->materials
@@ -262,7 +262,7 @@ struct RenderSettings {
     SampleMethod sampling;
     int depth;         // most rays in one chain, primary included
     int threads;       // worker threads; the image never depends on it
-    Methods methods;   // ray/shape routines (kRobustMethods unless comparing)
+    Methods methods;   // the numerical methods (kRobustMethods, or as --methods and co. choose)
     bool showProgress; // redraw a progress line on standard error
     Effects effects;   // filled by PlanRender
     Camera camera;     // the scene's camera for this image size, filled by PlanRender

@@ -81,7 +81,7 @@ static color ViewValue(const Scene *scene, const RenderSettings *settings, ViewK
     *scalar = -1; // no hit
     if (!FindNearestHit(scene, settings->methods, &ray, 0, kInfinity, &hit))
         return {0, 0, 0};
-    *scalar = hit.t * SafeLength(ray.dir); // distance from the eye
+    *scalar = hit.t * SafeLength(ray.dir); // distance from where the ray starts (eye or screen)
     if (view == VIEW_NORMAL)
         return real(0.5) * (hit.normal + vec3{1, 1, 1});
     if (view == VIEW_ID)
