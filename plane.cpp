@@ -232,6 +232,8 @@ bool RobustPlaneHit(const Triangle *tri, const Ray *ray, real tMin, real tMax, R
 
     real t = (real)plane.t;
     vec3 along = t * ray->dir;
+    if (!IsFinite(ray->origin + along)) // t finite, but the point beyond the range of numbers
+        return false;
     hit->t = t;
     hit->point = ray->origin + along;
     real tError = (real)plane.error + Gamma(1) * t;

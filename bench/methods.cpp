@@ -103,63 +103,68 @@ static int HardCasesPassed(SphereRoutine sphere, TriangleRoutine triangle, int *
     return passed;
 }
 
-int MethodsTable() {
-    const char *precision = kDouble ? "double" : "float";
-    printf("### What each method costs and buys, %s\n\n", precision);
-    printf("Time of one test (ns, best of 5 rounds, one thread), hard-case rows passed with the "
-           "robust other shape, and pixels of the 128 x 128 test scene more than 2/255 off the "
-           "robust image, at scale 1e-4, 1, 1e4 and moved %s from the origin.\n\n",
-           kDouble ? "1e9" : "1e3");
-    printf("| method | ns, hit | ns, miss | hard cases | off at 1e-4 | off at 1 | off at 1e4 | "
-           "off at 1e6 | off far away |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
-           "---: |\n");
-    Scene test;
-    BuildTestScene(&test);
+// The sphere rows: each method's time, hard cases (with watertight triangles) and artefacts.
+static void SphereRows(const Scene &test) {
     Sphere sphere = {{0, 0, -5}, 1, 0};
-    Triangle tri = {{-1, -1, -5}, {1, -1, -5}, {0, 1, -5}, 0};
     auto stable = [&](const Ray *r, RayHit *h) {
         return IntersectSphere(&sphere, r, 0, kInfinity, h);
     };
-    struct SphereRow {
+    struct {
         const char *name;
         SphereRoutine routine;
         SphereMethod method;
-    } spheres[] = {{"sphere: stable", IntersectSphere, SPHERE_STABLE},
-                   {"sphere: textbook (handout)", IntersectSphereTextbook, SPHERE_TEXTBOOK}};
-    for (const SphereRow &row : spheres) {
+    } rows[] = {{"sphere: stable", IntersectSphere, SPHERE_STABLE},
+                {"sphere: textbook (handout)", IntersectSphereTextbook, SPHERE_TEXTBOOK}};
+    for (const auto &row : rows) {
         TimeRoutine(
             row.name,
             [&](const Ray *r, RayHit *h) { return row.routine(&sphere, r, 0, kInfinity, h); },
             stable);
-        int rows, passed = HardCasesPassed(row.routine, IntersectTriangle, &rows);
-        printf(" %d of %d |", passed, rows);
+        int cases, passed = HardCasesPassed(row.routine, IntersectTriangle, &cases);
+        printf(" %d of %d |", passed, cases);
         Methods m = kRobustMethods;
         m.sphere = row.method;
         ArtefactCells(test, m);
         printf("\n");
     }
+}
+
+// The triangle rows, likewise (hard cases with the stable sphere).
+static void TriangleRows(const Scene &test) {
+    Triangle tri = {{-1, -1, -5}, {1, -1, -5}, {0, 1, -5}, 0};
     auto watertight = [&](const Ray *r, RayHit *h) {
         return IntersectTriangle(&tri, r, 0, kInfinity, h);
     };
-    struct TriangleRow {
+    struct {
         const char *name;
         TriangleRoutine routine;
         TriangleMethod method;
-    } triangles[] = {{"triangle: watertight", IntersectTriangle, TRIANGLE_WATERTIGHT},
-                     {"triangle: Cramer (handout)", IntersectTriangleCramer, TRIANGLE_CRAMER},
-                     {"triangle: plane (2nd handout)", IntersectTrianglePlane, TRIANGLE_PLANE}};
-    for (const TriangleRow &row : triangles) {
+    } rows[] = {{"triangle: watertight", IntersectTriangle, TRIANGLE_WATERTIGHT},
+                {"triangle: Cramer (handout)", IntersectTriangleCramer, TRIANGLE_CRAMER},
+                {"triangle: plane (2nd handout)", IntersectTrianglePlane, TRIANGLE_PLANE}};
+    for (const auto &row : rows) {
         TimeRoutine(
             row.name,
             [&](const Ray *r, RayHit *h) { return row.routine(&tri, r, 0, kInfinity, h); },
             watertight);
-        int rows, passed = HardCasesPassed(IntersectSphere, row.routine, &rows);
-        printf(" %d of %d |", passed, rows);
+        int cases, passed = HardCasesPassed(IntersectSphere, row.routine, &cases);
+        printf(" %d of %d |", passed, cases);
         Methods m = kRobustMethods;
         m.triangle = row.method;
         ArtefactCells(test, m);
         printf("\n");
     }
+}
+
+int MethodsTable() {
+    printf("### What each method costs and buys, %s\n\n", kDouble ? "double" : "float");
+    printf("| method | ns, hit | ns, miss | hard cases | off at 1e-4 | off at 1 | off at 1e4 | "
+           "off at 1e6 | off far away |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
+           "---: |\n");
+    Scene test;
+    BuildTestScene(&test);
+    SphereRows(test);
+    TriangleRows(test);
     const char *selfHits[] = {"self-hit: bound", "self-hit: epsilon 1e-4 (a usual student fix)",
                               "self-hit: skip (2nd handout)"};
     for (int k = 0; k < 3; k++) {
