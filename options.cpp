@@ -195,16 +195,36 @@ static bool ParseOption(const std::string &a, char **v, Options *opt, std::strin
     return true;
 }
 
+// Every option and how many values follow it.
+static const struct {
+    const char *name;
+    int values;
+} kOptions[] = {{"-o", 1},        {"--size", 1},      {"--spp", 1},        {"--depth", 1},
+                {"--threads", 1}, {"--aa", 1},        {"--triangle", 1},   {"--sphere", 1},
+                {"--methods", 1}, {"--self-hit", 1},  {"--camera-ray", 1}, {"--fresnel", 1},
+                {"--view", 1},    {"--ray", 6},       {"--rays", 1},       {"--pixel", 2},
+                {"--compare", 2}, {"--tolerance", 1}, {"--stats", 0},      {"--help", 0},
+                {"-h", 0},        {"--version", 0}};
+
+// What must not be given together: `seen` lists the options given, each between spaces.
+static bool CheckCombinations(const Options *opt, const std::string &seen, std::string *error) {
+    if (seen.find(" --tolerance ") != std::string::npos && !opt->compare) {
+        *error = "--tolerance goes with --compare";
+        return false;
+    }
+    int modes = opt->probeRay + !opt->raysFile.empty() + opt->pixel + opt->compare + opt->view;
+    if (modes > 1) {
+        *error = "choose one of --ray, --rays, --pixel, --view and --compare";
+        return false;
+    }
+    if (!opt->output.empty() && (opt->probeRay || opt->pixel || !opt->raysFile.empty())) {
+        *error = "-o goes with a render, --view or --compare; probes print to standard output";
+        return false;
+    }
+    return true;
+}
+
 bool ParseOptions(int argc, char **argv, Options *opt, std::string *error) {
-    static const struct {
-        const char *name;
-        int values;
-    } kOptions[] = {{"-o", 1},        {"--size", 1},      {"--spp", 1},        {"--depth", 1},
-                    {"--threads", 1}, {"--aa", 1},        {"--triangle", 1},   {"--sphere", 1},
-                    {"--methods", 1}, {"--self-hit", 1},  {"--camera-ray", 1}, {"--fresnel", 1},
-                    {"--view", 1},    {"--ray", 6},       {"--rays", 1},       {"--pixel", 2},
-                    {"--compare", 2}, {"--tolerance", 1}, {"--stats", 0},      {"--help", 0},
-                    {"-h", 0},        {"--version", 0}};
     bool sceneGiven = false;
     std::string seen; // the options given so far, each between spaces
     for (int k = 1; k < argc; k++) {
@@ -242,18 +262,5 @@ bool ParseOptions(int argc, char **argv, Options *opt, std::string *error) {
             return false;
         k += values;
     }
-    if (seen.find(" --tolerance ") != std::string::npos && !opt->compare) {
-        *error = "--tolerance goes with --compare";
-        return false;
-    }
-    int modes = opt->probeRay + !opt->raysFile.empty() + opt->pixel + opt->compare + opt->view;
-    if (modes > 1) {
-        *error = "choose one of --ray, --rays, --pixel, --view and --compare";
-        return false;
-    }
-    if (!opt->output.empty() && (opt->probeRay || opt->pixel || !opt->raysFile.empty())) {
-        *error = "-o goes with a render, --view or --compare; probes print to standard output";
-        return false;
-    }
-    return true;
+    return CheckCombinations(opt, seen, error);
 }
