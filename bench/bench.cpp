@@ -9,7 +9,8 @@
 //   bench pngfloor RGB PNG   writes the raw 512 x 512 RGB file as a PNG, nothing else: the floor
 //                       for the whole-process time of `ray`
 //   bench robustness    prints the measured tables of docs/robustness.md (robustness.cpp)
-//   bench methods       what each numerical method costs and buys (methods.cpp)
+//   bench methods [DIR] what each numerical method costs and buys (methods.cpp); with DIR, also
+//                       the pictures of a fixed epsilon at the wrong scale
 //   bench time PROGRAM ARGS...   runs PROGRAM once (its standard output thrown away, its
 //                       standard error passed on) and prints its whole-process wall time in ms:
 //                       from fork to the end of waitpid, so the clock includes starting and
@@ -266,7 +267,7 @@ static int TimeProcess(char **command) {
 
 int ReportMain(const std::string &dir); // report.cpp
 int RobustnessTables();                 // robustness.cpp
-int MethodsTable();                     // methods.cpp
+int MethodsTable(const char *folder);   // methods.cpp
 
 int main(int argc, char **argv) {
     std::string mode = argc > 1 ? argv[1] : "";
@@ -280,11 +281,11 @@ int main(int argc, char **argv) {
         return TimeProcess(argv + 2);
     if (mode == "robustness" && argc == 2)
         return RobustnessTables();
-    if (mode == "methods" && argc == 2)
-        return MethodsTable();
+    if (mode == "methods" && (argc == 2 || argc == 3))
+        return MethodsTable(argc == 3 ? argv[2] : nullptr);
     if (mode != "rows" || argc != 3) {
         fprintf(stderr, "usage: bench rows DIR | bench report DIR | bench pngfloor RGB PNG | "
-                        "bench time PROGRAM ARGS... | bench robustness | bench methods\n");
+                        "bench time PROGRAM ARGS... | bench robustness | bench methods [DIR]\n");
         return 2;
     }
     for (const BenchScene &b : kScenes)

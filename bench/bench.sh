@@ -120,8 +120,8 @@ mkdir -p build/bench
 echo
 echo "## Robustness: build/bench/robustness.md"
 {
-    build/double/rtbench methods
-    build/float/rtbench methods
+    build/double/rtbench methods build/bench
+    build/float/rtbench methods build/bench
 } >build/bench/methods.md
 echo "## What each method costs and buys: build/bench/methods.md"
 

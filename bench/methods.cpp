@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cstdio>
 #include <random>
+#include <string>
 
 static const bool kDouble = sizeof(real) == sizeof(double);
 
@@ -156,7 +157,41 @@ static void TriangleRows(const Scene &test) {
     }
 }
 
-int MethodsTable() {
+// Two renders side by side, a white gap between: what the robust offset draws and what a fixed
+// epsilon draws, the test scene at `scale`, 256 x 256 each, written to path.
+static void EpsilonPicture(const Scene &test, real scale, const std::string &path) {
+    Scene scene = TransformedScene(test, scale, {0, 0, 0});
+    Methods epsilon = kRobustMethods;
+    epsilon.selfHit = SELF_HIT_EPSILON;
+    Image sides[2];
+    for (int k = 0; k < 2; k++) {
+        RenderSettings settings = {
+            256, 256, 1, SAMPLES_GRID, scene.depth, 2, k ? epsilon : kRobustMethods, false, {}, {}};
+        RayStats stats = {0, 0, 0, 0, 0};
+        Render(&scene, &settings, &sides[k], &stats);
+    }
+    Image both = {2 * 256 + 4, 256, {}};
+    for (int y = 0; y < 256; y++) {
+        const uint8_t *left = &sides[0].pixels[3 * 256 * y], *right = &sides[1].pixels[3 * 256 * y];
+        both.pixels.insert(both.pixels.end(), left, left + 3 * 256);
+        both.pixels.insert(both.pixels.end(), 12, 255);
+        both.pixels.insert(both.pixels.end(), right, right + 3 * 256);
+    }
+    std::string error;
+    if (!WriteImage(path.c_str(), &both, &error))
+        fprintf(stderr, "bench: %s\n", error.c_str());
+}
+
+// The table, and with a folder, the pictures of what a fixed epsilon does at the wrong scale:
+// contact shadows lost at scale 1e-4 (double), acne at 1e4 (float).
+int MethodsTable(const char *folder) {
+    if (folder) {
+        Scene test;
+        BuildTestScene(&test);
+        EpsilonPicture(test, kDouble ? real(1e-4) : real(1e4),
+                       std::string(folder) +
+                           (kDouble ? "/epsilon_at_1e-4.png" : "/epsilon_at_1e4_float.png"));
+    }
     printf("### What each method costs and buys, %s\n\n", kDouble ? "double" : "float");
     printf("| method | ns, hit | ns, miss | hard cases | off at 1e-4 | off at 1 | off at 1e4 | "
            "off at 1e6 | off far away |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
