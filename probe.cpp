@@ -114,7 +114,7 @@ static std::string NodeJson(const Scene *scene, const std::vector<RayNode> &tree
 
 std::string PixelTreeJson(const Scene *scene, const RenderSettings *settings, int x, int y) {
     std::vector<RayNode> tree;
-    TraceLog log = {RayStats{0, 0, 0, 0, 0}, &tree, -1};
+    TraceLog log = {RayStats{0, 0, 0, 0, 0}, &tree, -1, 0};
     Ray ray;
     GetCameraRay(&settings->camera, settings->width, settings->height, SamplePosition(x, y, 0, 1),
                  &ray);

@@ -34,6 +34,15 @@ void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *ef
     }
 }
 
+// Adds one shape (or 0: none) to the hash of the shapes a pixel sample's rays met, in order
+// (SplitMix64's finaliser, as the jitter's hash).
+static uint64_t MixSurface(uint64_t hash, uint64_t shape) {
+    uint64_t z = hash + shape + 0x9e3779b97f4a7c15ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
 // Adds a node for `ray` to the ray tree, if one is being recorded; returns its index or -1.
 static int RecordRay(RayKind kind, const Ray *ray, TraceLog *log) {
     if (!log->tree)
@@ -70,8 +79,11 @@ static bool LightIsVisible(const Shading *sh, const RayHit *hit, const Light *li
         !ShadowRay(hit, light->position, methods, &shadow, &start))
         return true;
     sh->log->stats.shadow++;
-    if (!sh->log->tree)
-        return !AnyHitFrom(sh->scene, *methods, &shadow, &start, 1);
+    if (!sh->log->tree) {
+        bool blocked = AnyHitFrom(sh->scene, *methods, &shadow, &start, 1);
+        sh->log->surfaces = MixSurface(sh->log->surfaces, blocked);
+        return !blocked;
+    }
 
     // Recording a ray tree: find the nearest blocker, so the tree can show which shape it is
     int node = RecordRay(RAY_SHADOW, &shadow, sh->log);
@@ -255,6 +267,7 @@ color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind,
     int node = RecordRay(kind, ray, log);
     RayHit hit;
     bool found = FindNearestHitFrom(scene, settings->methods, ray, start, kInfinity, &hit);
+    log->surfaces = MixSurface(log->surfaces, found ? 2 * hit.index + hit.shape + 1 : 0);
     color result = scene->background;
     if (found) {
         int parent = log->current;

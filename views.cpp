@@ -71,7 +71,7 @@ static color ViewValue(const Scene *scene, const RenderSettings *settings, ViewK
                  &ray);
     if (view == VIEW_COST) {
         RayStats stats = {0, 0, 0, 0, 0};
-        TraceLog log = {stats, nullptr, -1};
+        TraceLog log = {stats, nullptr, -1, 0};
         TraceRay(scene, settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
         *scalar = real(log.stats.primary + log.stats.shadow + log.stats.reflection +
                        log.stats.refraction);

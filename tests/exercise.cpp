@@ -26,7 +26,7 @@ static bool RenderTiny(const Scene *scene, std::string *why) {
     for (int j = 0; j < 4; j++) {
         for (int i = 0; i < 4; i++) {
             std::vector<RayNode> tree;
-            TraceLog log = {RayStats{0, 0, 0, 0, 0}, &tree, -1};
+            TraceLog log = {RayStats{0, 0, 0, 0, 0}, &tree, -1, 0};
             Ray ray;
             GetCameraRay(&settings.camera, 4, 4, SamplePosition(i, j, 0, 1), &ray);
             TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);

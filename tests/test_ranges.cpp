@@ -161,7 +161,7 @@ static void TestFarLight() {
     RenderSettings settings = TestSettings(&scene);
     real shadow = -1, lit = -1;
     for (real x : {real(0), real(500)}) {
-        TraceLog log = {RayStats{0, 0, 0, 0, 0}, nullptr, -1};
+        TraceLog log = {RayStats{0, 0, 0, 0, 0}, nullptr, -1, 0};
         Ray ray = {{x, 50, 30}, {0, -50, -30}};
         color c = read ? TraceRay(&scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye,
                                   RayChain{1, 1}, &log)

@@ -99,7 +99,8 @@ void TestAssignmentImage() {
               std::string("--aa ") + name + " 16 spp: identical bytes on 1 and 2 threads");
         if (method == SAMPLES_ADAPTIVE)
             CHECK(a.primary > 64 * 64 * 5 && a.primary < 64 * 64 * 16,
-                  "--aa adaptive 16 spp: between 5 and 16 primary rays per pixel (" +
+                  "--aa adaptive 16 spp: 5 rays where flat, 20 where refined, fewer than the "
+                  "grid's 16 on average (" +
                       std::to_string(a.primary) + " for 4096 pixels)");
     }
     // Where nothing varies (an empty scene), adaptive sampling stops at its first 5 samples
@@ -108,6 +109,21 @@ void TestAssignmentImage() {
     RayStats e = {0, 0, 0, 0, 0};
     Render(&empty, &settings, &one, &e);
     CHECK(e.primary == 64 * 64 * 5, "--aa adaptive on an empty scene: exactly 5 rays per pixel");
+    // Two triangles of one flat colour (no light: ambient only) filling the view: the colour never
+    // varies, but the pixels their shared diagonal crosses see two shapes, and are refined (each
+    // such pixel costs 20 rays: 5 that decide, 15 more)
+    Scene flat;
+    InitScene(&flat);
+    flat.materials.push_back(Matte("grey", {real(0.5), real(0.5), real(0.5)}));
+    flat.triangles = {{{-5, -5, -2}, {5, -5, -2}, {5, 5, -2}, 0},
+                      {{-5, -5, -2}, {5, 5, -2}, {-5, 5, -2}, 0}};
+    RayStats f = {0, 0, 0, 0, 0};
+    Render(&flat, &settings, &one, &f);
+    CHECK(f.primary > 64 * 64 * 5 && (f.primary - 64 * 64 * 5) % 15 == 0 &&
+              f.primary < 64 * 64 * 5 + 15 * 64 * 3,
+          "--aa adaptive refines where the shapes differ though the colour does not: the pixels "
+          "along the diagonal (" +
+              std::to_string(f.primary) + " rays)");
     settings.sampling = SAMPLES_GRID;
     settings.threads = 1;
     // 4 samples per pixel: exactly 4 primary rays per pixel

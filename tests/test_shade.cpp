@@ -22,7 +22,7 @@ static Scene FloorScene(vec3 lightPosition, real diffuse) {
 static color Shade(const Scene *scene, vec3 origin, vec3 dir, RayStats *stats) {
     RenderSettings settings = TestSettings(scene);
     Ray ray = {origin, dir};
-    TraceLog log = {RayStats{0, 0, 0, 0, 0}, nullptr, -1};
+    TraceLog log = {RayStats{0, 0, 0, 0, 0}, nullptr, -1, 0};
     color c = TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
     *stats = log.stats;
     return c;
