@@ -9,7 +9,9 @@
 #include "../tests/hard_cases.h"
 #include "../tests/robust_scenes.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <string>
@@ -81,17 +83,81 @@ static long PixelsOff(const Image &a, const Image &b) {
 }
 
 // The artefact columns: pixels off the robust image of the same scene, per placement.
-static void ArtefactCells(const Scene &test, Methods methods) {
+// One point of the plot: a method's render time and the pixels it gets wrong, over all scales.
+struct PlotPoint {
+    std::string name;
+    double milliseconds;
+    long pixelsOff;
+};
+
+// The render time of the 128 x 128 test scene with `methods`, one thread, median of 3 (ms).
+static double RenderMilliseconds(const Scene &test, Methods methods) {
+    double times[3];
+    for (double &t : times) {
+        RenderSettings settings = {128, 128,     1,     SAMPLES_GRID, test.depth,
+                                   1,   methods, false, {},           {}};
+        Image image;
+        RayStats stats = {0, 0, 0, 0, 0};
+        auto start = std::chrono::steady_clock::now();
+        Render(&test, &settings, &image, &stats);
+        t = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    std::sort(times, times + 3);
+    return times[1];
+}
+
+// The render-time cell and the artefact cells: pixels off the robust image of the same scene,
+// per placement. Adds the method's point to *plot.
+static void ArtefactCells(const Scene &test, Methods methods, const char *name,
+                          std::vector<PlotPoint> *plot) {
     const real placements[][2] = {{real(1e-4), 0},
                                   {1, 0},
                                   {real(1e4), 0},
                                   {real(1e6), 0},
                                   {1, kDouble ? real(1e9) : real(1e3)}};
+    double ms = RenderMilliseconds(test, methods);
+    printf(" %.0f |", ms);
+    long total = 0;
     for (const auto &p : placements) {
         Scene scene = TransformedScene(test, p[0], {p[1], -p[1], p[1]});
-        printf(" %ld |",
-               PixelsOff(RenderWith(&scene, kRobustMethods), RenderWith(&scene, methods)));
+        long off = PixelsOff(RenderWith(&scene, kRobustMethods), RenderWith(&scene, methods));
+        printf(" %ld |", off);
+        total += off;
     }
+    plot->push_back({name, ms, total});
+}
+
+// The plot: pixels off (all placements together, on a log scale from 1) against render time,
+// one labelled point per method, as an SVG file.
+static void WritePlot(const std::vector<PlotPoint> &plot, const std::string &path) {
+    FILE *svg = fopen(path.c_str(), "w");
+    if (!svg)
+        return;
+    double most = 1;
+    for (const PlotPoint &p : plot)
+        most = std::max(most, p.milliseconds);
+    fprintf(svg,
+            "<svg xmlns='http://www.w3.org/2000/svg' width='640' height='400' "
+            "font-family='sans-serif' font-size='11'>\n<rect width='640' height='400' "
+            "fill='white'/>\n<line x1='60' y1='350' x2='620' y2='350' stroke='black'/>\n"
+            "<line x1='60' y1='20' x2='60' y2='350' stroke='black'/>\n"
+            "<text x='340' y='385' text-anchor='middle'>render time of the test scene, ms "
+            "(%s, one thread)</text>\n<text x='15' y='185' transform='rotate(-90 15 185)' "
+            "text-anchor='middle'>pixels off the robust image, all scales (log)</text>\n",
+            kDouble ? "double" : "float");
+    for (int decade = 0; decade <= 4; decade++)
+        fprintf(svg, "<text x='55' y='%d' text-anchor='end'>%g</text>\n", 350 - 80 * decade + 4,
+                std::pow(10.0, decade));
+    for (size_t k = 0; k < plot.size(); k++) {
+        double x = 60 + 540 * plot[k].milliseconds / (most * 1.1);
+        double y = 350 - 80 * std::log10(1.0 + plot[k].pixelsOff);
+        fprintf(svg, "<circle cx='%.1f' cy='%.1f' r='4' fill='%s'/>\n", x, y,
+                plot[k].name.find("handout") != std::string::npos ? "crimson" : "steelblue");
+        fprintf(svg, "<text x='%.1f' y='%.1f'>%s</text>\n", x + 7, y - 6 - 11.0 * (k % 3),
+                plot[k].name.c_str());
+    }
+    fprintf(svg, "</svg>\n");
+    fclose(svg);
 }
 
 static int HardCasesPassed(SphereRoutine sphere, TriangleRoutine triangle, int *rows) {
@@ -105,7 +171,7 @@ static int HardCasesPassed(SphereRoutine sphere, TriangleRoutine triangle, int *
 }
 
 // The sphere rows: each method's time, hard cases (with watertight triangles) and artefacts.
-static void SphereRows(const Scene &test) {
+static void SphereRows(const Scene &test, std::vector<PlotPoint> *plot) {
     Sphere sphere = {{0, 0, -5}, 1, 0};
     auto stable = [&](const Ray *r, RayHit *h) {
         return IntersectSphere(&sphere, r, 0, kInfinity, h);
@@ -125,13 +191,13 @@ static void SphereRows(const Scene &test) {
         printf(" %d of %d |", passed, cases);
         Methods m = kRobustMethods;
         m.sphere = row.method;
-        ArtefactCells(test, m);
+        ArtefactCells(test, m, row.name, plot);
         printf("\n");
     }
 }
 
 // The triangle rows, likewise (hard cases with the stable sphere).
-static void TriangleRows(const Scene &test) {
+static void TriangleRows(const Scene &test, std::vector<PlotPoint> *plot) {
     Triangle tri = {{-1, -1, -5}, {1, -1, -5}, {0, 1, -5}, 0};
     auto watertight = [&](const Ray *r, RayHit *h) {
         return IntersectTriangle(&tri, r, 0, kInfinity, h);
@@ -152,7 +218,7 @@ static void TriangleRows(const Scene &test) {
         printf(" %d of %d |", passed, cases);
         Methods m = kRobustMethods;
         m.triangle = row.method;
-        ArtefactCells(test, m);
+        ArtefactCells(test, m, row.name, plot);
         printf("\n");
     }
 }
@@ -193,24 +259,27 @@ int MethodsTable(const char *folder) {
                            (kDouble ? "/epsilon_at_1e-4.png" : "/epsilon_at_1e4_float.png"));
     }
     printf("### What each method costs and buys, %s\n\n", kDouble ? "double" : "float");
-    printf("| method | ns, hit | ns, miss | hard cases | off at 1e-4 | off at 1 | off at 1e4 | "
-           "off at 1e6 | off far away |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
-           "---: |\n");
+    printf("| method | ns, hit | ns, miss | hard cases | render ms | off at 1e-4 | off at 1 | "
+           "off at 1e4 | off at 1e6 | off far away |\n| --- | ---: | ---: | ---: | ---: | ---: | "
+           "---: | ---: | ---: | ---: |\n");
     Scene test;
     BuildTestScene(&test);
-    SphereRows(test);
-    TriangleRows(test);
+    std::vector<PlotPoint> plot;
+    SphereRows(test, &plot);
+    TriangleRows(test, &plot);
     const char *selfHits[] = {"self-hit: bound", "self-hit: epsilon 1e-4 (a usual student fix)",
                               "self-hit: skip (2nd handout)"};
     for (int k = 0; k < 3; k++) {
         printf("| %s | | | |", selfHits[k]);
         Methods m = kRobustMethods;
         m.selfHit = (SelfHitMethod)k;
-        ArtefactCells(test, m);
+        ArtefactCells(test, m, selfHits[k], &plot);
         printf("\n");
     }
     printf("| the whole handout set | | | |");
-    ArtefactCells(test, kHandoutMethods);
+    ArtefactCells(test, kHandoutMethods, "the whole handout set", &plot);
     printf("\n\n");
+    if (folder)
+        WritePlot(plot, std::string(folder) + (kDouble ? "/methods.svg" : "/methods_float.svg"));
     return 0;
 }
