@@ -137,14 +137,17 @@ static void WritePlot(const std::vector<PlotPoint> &plot, const std::string &pat
     for (const PlotPoint &p : plot)
         most = std::max(most, p.milliseconds);
     fprintf(svg,
-            "<svg xmlns='http://www.w3.org/2000/svg' width='640' height='400' "
-            "font-family='sans-serif' font-size='11'>\n<rect width='640' height='400' "
+            "<svg xmlns='http://www.w3.org/2000/svg' width='800' height='400' "
+            "font-family='sans-serif' font-size='11'>\n<rect width='800' height='400' "
             "fill='white'/>\n<line x1='60' y1='350' x2='620' y2='350' stroke='black'/>\n"
             "<line x1='60' y1='20' x2='60' y2='350' stroke='black'/>\n"
             "<text x='340' y='385' text-anchor='middle'>render time of the test scene, ms "
             "(%s, one thread)</text>\n<text x='15' y='185' transform='rotate(-90 15 185)' "
-            "text-anchor='middle'>pixels off the robust image, all scales (log)</text>\n",
+            "text-anchor='middle'>1 + pixels off the robust image, all scales (log)</text>\n",
             kDouble ? "double" : "float");
+    for (int tick = 0; tick <= 4; tick++) // the time axis: 0 to 1.1 times the longest render
+        fprintf(svg, "<text x='%.1f' y='365' text-anchor='middle'>%.0f</text>\n",
+                60 + 540 * tick / 4.0, most * 1.1 * tick / 4);
     for (int decade = 0; decade <= 4; decade++)
         fprintf(svg, "<text x='55' y='%d' text-anchor='end'>%g</text>\n", 350 - 80 * decade + 4,
                 std::pow(10.0, decade));
