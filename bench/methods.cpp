@@ -71,15 +71,60 @@ static Image RenderWith(const Scene *scene, Methods methods) {
     return image;
 }
 
-static long PixelsOff(const Image &a, const Image &b) {
-    long off = 0;
+// The pixels (as indices y * 128 + x) where two images differ by more than 2/255.
+static std::vector<int> PixelsOff(const Image &a, const Image &b) {
+    std::vector<int> off;
     for (size_t p = 0; p < a.pixels.size(); p += 3) {
         int largest = 0;
         for (int c = 0; c < 3; c++)
             largest = std::max(largest, std::abs(a.pixels[p + c] - b.pixels[p + c]));
-        off += largest > 2;
+        if (largest > 2)
+            off.push_back((int)(p / 3));
     }
     return off;
+}
+
+// What a pixel off the robust image is, from the trees of the pixel's centre ray under both
+// methods, compared node by node to the first difference: a shadow ray blocked only under the
+// method (acne), or only under the robust one (a lost shadow); a ray that meets a different
+// surface elsewhere (a crack, or a false hit); the same point on a different triangle (a tie: a
+// ray exactly through a shared edge, either answer right); or no difference in the trees
+// (another: a different shading term, such as Schlick's). Counted over all placements.
+struct Kinds {
+    long acne, lostShadows, wrongSurface, ties, other;
+};
+
+static std::vector<RayNode> CentreTree(const Scene *scene, Methods methods, int i, int j) {
+    RenderSettings settings = {128, 128, 1, SAMPLES_GRID, scene->depth, 1, methods, false, {}, {}};
+    PlanRender(scene, &settings);
+    std::vector<RayNode> tree;
+    TraceLog log = {RayStats{0, 0, 0, 0, 0}, &tree, -1, 0};
+    Ray ray;
+    GetCameraRay(&settings.camera, 128, 128, SamplePosition(i, j, 0, 1), &ray);
+    TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
+    return tree;
+}
+
+static void Classify(const Scene *scene, Methods methods, int i, int j, Kinds *kinds) {
+    std::vector<RayNode> a = CentreTree(scene, kRobustMethods, i, j);
+    std::vector<RayNode> b = CentreTree(scene, methods, i, j);
+    for (size_t k = 0; k < a.size() && k < b.size() && a[k].kind == b[k].kind; k++) {
+        const RayNode &x = a[k], &y = b[k];
+        if (x.kind == RAY_SHADOW && x.hit != y.hit) {
+            (y.hit ? kinds->acne : kinds->lostShadows)++;
+            return;
+        }
+        if (x.kind == RAY_SHADOW ||
+            (x.hit == y.hit &&
+             (!x.hit || (x.record.shape == y.record.shape && x.record.index == y.record.index))))
+            continue;
+        vec3 gap = x.record.point - y.record.point;
+        bool samePoint =
+            x.hit && y.hit && SafeLength(gap) <= real(1e-6) * (SafeLength(x.record.point) + 1e-30);
+        (samePoint ? kinds->ties : kinds->wrongSurface)++;
+        return;
+    }
+    kinds->other++;
 }
 
 // The artefact columns: pixels off the robust image of the same scene, per placement.
@@ -118,12 +163,18 @@ static void ArtefactCells(const Scene &test, Methods methods, const char *name,
     double ms = RenderMilliseconds(test, methods);
     printf(" %.0f |", ms);
     long total = 0;
+    Kinds kinds = {0, 0, 0, 0, 0};
     for (const auto &p : placements) {
         Scene scene = TransformedScene(test, p[0], {p[1], -p[1], p[1]});
-        long off = PixelsOff(RenderWith(&scene, kRobustMethods), RenderWith(&scene, methods));
-        printf(" %ld |", off);
-        total += off;
+        std::vector<int> off =
+            PixelsOff(RenderWith(&scene, kRobustMethods), RenderWith(&scene, methods));
+        printf(" %zu |", off.size());
+        total += (long)off.size();
+        for (int pixel : off)
+            Classify(&scene, methods, pixel % 128, pixel / 128, &kinds);
     }
+    printf(" %ld / %ld / %ld / %ld / %ld |", kinds.acne, kinds.lostShadows, kinds.wrongSurface,
+           kinds.ties, kinds.other);
     plot->push_back({name, ms, total});
 }
 
@@ -263,8 +314,9 @@ int MethodsTable(const char *folder) {
     }
     printf("### What each method costs and buys, %s\n\n", kDouble ? "double" : "float");
     printf("| method | ns, hit | ns, miss | hard cases | render ms | off at 1e-4 | off at 1 | "
-           "off at 1e4 | off at 1e6 | off far away |\n| --- | ---: | ---: | ---: | ---: | ---: | "
-           "---: | ---: | ---: | ---: |\n");
+           "off at 1e4 | off at 1e6 | off far away | acne / lost shadows / wrong surface / ties / "
+           "other |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
+           "|\n");
     Scene test;
     BuildTestScene(&test);
     std::vector<PlotPoint> plot;
