@@ -76,7 +76,7 @@ static bool ParseSize(const char *text, Options *opt, std::string *error) {
 
 // One word of a list: *index is its position. "--sphere must be stable or textbook, not 'x'".
 static bool ParseChoice(const std::string &option, const std::string &word,
-                        std::initializer_list<const char *> words, int *index, std::string *error) {
+                        const std::vector<const char *> &words, int *index, std::string *error) {
     int k = 0;
     std::string list;
     for (const char *w : words) {
@@ -131,7 +131,51 @@ Methods ChosenMethods(const Options *opt) {
     return m;
 }
 
+// --ray OX OY OZ DX DY DZ: six finite numbers, the direction not zero.
+static bool ParseProbe(char **v, Options *opt, std::string *error) {
+    opt->probeRay = true;
+    for (int k = 0; k < 6; k++)
+        if (!ParseReal(v[k], &opt->probe[k], error)) {
+            *error = "--ray: " + *error;
+            return false;
+        }
+    if (opt->probe[3] == 0 && opt->probe[4] == 0 && opt->probe[5] == 0) {
+        *error = "--ray: direction is zero";
+        return false;
+    }
+    return true;
+}
+
+// --tolerance T: a number from 0 to 255.
+static bool ParseTolerance(const char *text, Options *opt, std::string *error) {
+    real t;
+    if (!ParseReal(text, &t, error) || !(t >= 0 && t <= 255)) {
+        *error = std::string("--tolerance must be a number from 0 to 255, not '") + text + "'";
+        return false;
+    }
+    opt->tolerance = t;
+    return true;
+}
+
+// The options that choose one word of a list, and where the choice goes.
+struct ChoiceOption {
+    const char *name;
+    std::vector<const char *> words;
+    int Options::*field;
+};
+static const ChoiceOption kChoices[] = {
+    {"--aa", {"grid", "jitter", "adaptive"}, &Options::sampling},
+    {"--methods", {"robust", "handout"}, &Options::methodSet},
+    {"--sphere", {"stable", "textbook"}, &Options::sphere},
+    {"--triangle", {"watertight", "cramer", "plane"}, &Options::triangle},
+    {"--camera-ray", {"eye", "slides"}, &Options::cameraRay},
+    {"--fresnel", {"exact", "schlick"}, &Options::fresnel}};
+
+// One option with its values v[0..]; false with *error if a value is bad.
 static bool ParseOption(const std::string &a, char **v, Options *opt, std::string *error) {
+    for (const ChoiceOption &c : kChoices)
+        if (a == c.name)
+            return ParseChoice(a, v[0], c.words, &(opt->*c.field), error);
     if (a == "-o")
         opt->output = v[0];
     else if (a == "--size")
@@ -142,39 +186,15 @@ static bool ParseOption(const std::string &a, char **v, Options *opt, std::strin
         return ParseInt(v[0], 1, 1000, "--depth", &opt->depth, error);
     else if (a == "--threads")
         return ParseInt(v[0], 1, 1024, "--threads", &opt->threads, error);
-    else if (a == "--aa")
-        return ParseChoice(a, v[0], {"grid", "jitter", "adaptive"}, &opt->sampling, error);
-    else if (a == "--methods")
-        return ParseChoice(a, v[0], {"robust", "handout"}, &opt->methodSet, error);
-    else if (a == "--sphere")
-        return ParseChoice(a, v[0], {"stable", "textbook"}, &opt->sphere, error);
-    else if (a == "--triangle")
-        return ParseChoice(a, v[0], {"watertight", "cramer", "plane"}, &opt->triangle, error);
-    else if (a == "--camera-ray")
-        return ParseChoice(a, v[0], {"eye", "slides"}, &opt->cameraRay, error);
-    else if (a == "--fresnel")
-        return ParseChoice(a, v[0], {"exact", "schlick"}, &opt->fresnel, error);
     else if (a == "--self-hit")
         return ParseSelfHit(v[0], opt, error);
-    else if (a == "--view") {
-        opt->view = FindView(v[0], &opt->viewKind);
-        if (!opt->view) {
-            *error =
-                std::string("--view must be normal, depth, id, cost or shadow, not '") + v[0] + "'";
-            return false;
-        }
-    } else if (a == "--ray") {
-        opt->probeRay = true;
-        for (int k = 0; k < 6; k++)
-            if (!ParseReal(v[k], &opt->probe[k], error)) {
-                *error = "--ray: " + *error;
-                return false;
-            }
-        if (opt->probe[3] == 0 && opt->probe[4] == 0 && opt->probe[5] == 0) {
-            *error = "--ray: direction is zero";
-            return false;
-        }
-    } else if (a == "--rays")
+    else if (a == "--view" && !(opt->view = FindView(v[0], &opt->viewKind))) {
+        *error =
+            std::string("--view must be normal, depth, id, cost or shadow, not '") + v[0] + "'";
+        return false;
+    } else if (a == "--ray")
+        return ParseProbe(v, opt, error);
+    else if (a == "--rays")
         opt->raysFile = v[0];
     else if (a == "--pixel") {
         opt->pixel = true;
@@ -184,14 +204,8 @@ static bool ParseOption(const std::string &a, char **v, Options *opt, std::strin
         opt->compare = true;
         opt->compareA = v[0];
         opt->compareB = v[1];
-    } else if (a == "--tolerance") {
-        real t;
-        if (!ParseReal(v[0], &t, error) || !(t >= 0 && t <= 255)) {
-            *error = std::string("--tolerance must be a number from 0 to 255, not '") + v[0] + "'";
-            return false;
-        }
-        opt->tolerance = t;
-    }
+    } else if (a == "--tolerance")
+        return ParseTolerance(v[0], opt, error);
     return true;
 }
 
