@@ -4,7 +4,7 @@
 // checks of what goes together. Nothing here prints; main does (ray.cpp).
 #include "options.h"
 
-#include <initializer_list>
+#include <vector>
 
 const char *kVersion = "rt 0.2.0";
 

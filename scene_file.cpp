@@ -150,6 +150,31 @@ static bool ReadLight(const Statement *st, Scene *scene, std::string *error) {
 }
 
 // `material NAME [diffuse R G B] [ambient R G B] [specular KS N] [mirror K] [glass IOR]`
+// One property of a material statement with its numbers v (already read): checked and set.
+static bool SetMaterialProperty(const Statement *st, const std::string &key, const real *v,
+                                Material *m, std::string *error) {
+    if (key == "diffuse" || key == "ambient") {
+        color c = {v[0], v[1], v[2]};
+        if (!CheckColor(st, key.c_str(), c, error))
+            return false;
+        (key == "diffuse" ? m->diffuse : m->ambient) = c;
+    } else if (key == "specular") {
+        if (!(v[0] >= 0) || !(v[1] >= 0))
+            return Fail(st, "material: specular KS and N must be >= 0", error);
+        m->specular = v[0];
+        m->shininess = v[1];
+    } else if (key == "mirror") {
+        if (!(v[0] >= 0 && v[0] <= 1))
+            return Fail(st, "material: mirror fraction must be in [0, 1]", error);
+        m->mirror = v[0];
+    } else {
+        if (!(v[0] > 0))
+            return Fail(st, "material: index of refraction must be > 0", error);
+        m->ior = v[0];
+    }
+    return true;
+}
+
 static bool ReadMaterial(const Statement *st, Scene *scene, std::string *error) {
     if (st->tokens.size() < 2)
         return Fail(st, "material: missing name", error);
@@ -157,7 +182,6 @@ static bool ReadMaterial(const Statement *st, Scene *scene, std::string *error) 
     for (const Material &other : scene->materials)
         if (other.name == m.name)
             return Fail(st, "material " + Shown(m.name) + " is defined twice", error);
-    bool ambientGiven = false;
     std::string keysSeen;
     for (size_t k = 2; k < st->tokens.size();) {
         const std::string &key = st->tokens[k];
@@ -183,29 +207,11 @@ static bool ReadMaterial(const Statement *st, Scene *scene, std::string *error) 
             if (!ParseReal(st->tokens[k + 1 + j], &v[j], &why))
                 return Fail(st, "material: " + key + ": " + why, error);
         }
-        if (key == "diffuse" || key == "ambient") {
-            color c = {v[0], v[1], v[2]};
-            if (!CheckColor(st, key.c_str(), c, error))
-                return false;
-            (key == "diffuse" ? m.diffuse : m.ambient) = c;
-            ambientGiven = ambientGiven || key == "ambient";
-        } else if (key == "specular") {
-            if (!(v[0] >= 0) || !(v[1] >= 0))
-                return Fail(st, "material: specular KS and N must be >= 0", error);
-            m.specular = v[0];
-            m.shininess = v[1];
-        } else if (key == "mirror") {
-            if (!(v[0] >= 0 && v[0] <= 1))
-                return Fail(st, "material: mirror fraction must be in [0, 1]", error);
-            m.mirror = v[0];
-        } else {
-            if (!(v[0] > 0))
-                return Fail(st, "material: index of refraction must be > 0", error);
-            m.ior = v[0];
-        }
+        if (!SetMaterialProperty(st, key, v, &m, error))
+            return false;
         k += 1 + count;
     }
-    if (!ambientGiven)
+    if (keysSeen.find(" ambient ") == std::string::npos) // ka defaults to kd
         m.ambient = m.diffuse;
     scene->materials.push_back(m);
     return true;
