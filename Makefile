@@ -13,7 +13,7 @@ PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
 PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 
 CORE = geometry handout watertight plane shade camera render image text scene_file probe views scene_default scene_test
-TESTS = $(basename $(notdir $(wildcard tests/test_*.cpp))) exercise hard_cases robust_scenes
+TESTS = $(basename $(notdir $(wildcard tests/test_*.cpp))) exercise hard_cases hard_cases_offset robust_scenes
 
 # Object lists for one build variant: $(call objs,DIR,NAMES)
 objs = $(addprefix $(1)/,$(addsuffix .o,$(2)))
@@ -88,7 +88,7 @@ fuzz: build/fuzz/fuzz_scene
 
 # The benchmark programs: bench/bench.cpp and report.cpp with the core and the hard-case suite,
 # once in double and once in float.
-BENCH_OBJS = bench/bench bench/report bench/robustness bench/methods tests/hard_cases tests/robust_scenes
+BENCH_OBJS = bench/bench bench/report bench/robustness bench/methods tests/hard_cases tests/hard_cases_offset tests/robust_scenes
 
 build/double/rtbench: $(call objs,build/double,$(BENCH_OBJS)) $(DOUBLE_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
