@@ -97,8 +97,10 @@ void Conclusions(std::ostream &md, const std::vector<Result> &rs, const std::str
         md << Format(
             "- Triangles: the watertight default takes %.0f%% of the time of the handout's "
             "Cramer form (%+.0f%%). Cramer's image differs from the watertight one in "
-            "%.4f%% of the pixels by more than 1/255: its cracks are rays through shared "
-            "edges and vertices, which the hard-case suite below counts.\n",
+            "%.4f%% of the pixels by more than 1/255: at scale 1 these are ties, rays exactly "
+            "through an edge two triangles share that take the other one, both right (`rtbench "
+            "methods` sorts them); Cramer's real cracks are what the hard-case suite below "
+            "counts.\n",
             100 * wt->seconds / cr->seconds, 100 * (wt->seconds / cr->seconds - 1),
             100 * crDiff->off1);
     if (tb && st && tbDiff)
