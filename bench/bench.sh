@@ -72,12 +72,12 @@ echo
 echo "Whole process: ./ray $whole ms; a process that only writes the same PNG: $floor ms;" \
      "ratio $ratio"
 
-# Issue 7's targets against this run's figures
+# The speed targets against this run's figures
 met() { awk -v x="$1" -v op="$2" -v y="$3" 'BEGIN { ok = op == "<=" ? x <= y : x >= y; print ok ? "met" : "not met" }'; }
 threads=$(awk -v a="$all16" -v b="$one16" 'BEGIN { printf "%.2f", a / b }')
 floatratio=$(awk -v a="$float16" -v b="$one16" 'BEGIN { printf "%.2f", a / b }')
 echo
-echo "## Issue 7's targets, this run"
+echo "## Speed targets, this run"
 echo
 echo "| target                                             | measured        | status  |"
 echo "|----------------------------------------------------|-----------------|---------|"
