@@ -81,7 +81,8 @@ static bool LightIsVisible(const Shading *sh, const RayHit *hit, const Light *li
     sh->log->stats.shadow++;
     if (!sh->log->tree) {
         bool blocked = AnyHitFrom(sh->scene, *methods, &shadow, &start, 1);
-        sh->log->surfaces = MixSurface(sh->log->surfaces, blocked);
+        if (sh->settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads it
+            sh->log->surfaces = MixSurface(sh->log->surfaces, blocked);
         return !blocked;
     }
 
@@ -267,7 +268,8 @@ color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind,
     int node = RecordRay(kind, ray, log);
     RayHit hit;
     bool found = FindNearestHitFrom(scene, settings->methods, ray, start, kInfinity, &hit);
-    log->surfaces = MixSurface(log->surfaces, found ? 2 * hit.index + hit.shape + 1 : 0);
+    if (settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads the hash
+        log->surfaces = MixSurface(log->surfaces, found ? 2 * hit.index + hit.shape + 1 : 0);
     color result = scene->background;
     if (found) {
         int parent = log->current;
