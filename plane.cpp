@@ -186,23 +186,38 @@ static void SetUpPlane(const Triangle *tri, const Ray *ray, PlaneProblem *p) {
                  std::fabs(xy) + std::fabs(yx)};
 }
 
+// t moved into the window [near, far] where the line passes the triangle's box (SlabInterval),
+// its error bound growing by the move. A ray within rounding of an edge, nearly parallel to the
+// triangle, can be judged inside while its line meets the plane far beyond the triangle: the
+// hit is then put where the line passes the triangle, not out there. That keeps every hit inside
+// its triangle's window, which is what lets the BVH skip boxes a ray passes outside. A hit on
+// the triangle is already inside (the window is wider than the hit's own error bound), so it
+// never moves.
+static PlaneT IntoWindow(PlaneT plane, real near, real far) {
+    double t = plane.t < near ? near : plane.t > far ? far : plane.t;
+    return {t, plane.error + std::fabs(t - plane.t)};
+}
+
 // The plane's t for a ray whose line passes inside the triangle, and whether it counts: in
 // (tMin, tMax), and above its own error bound, so a ray that starts on this plane, having just
 // left it, does not hit it again. Tier 1's t decides alone only where its bound puts it clearly
 // outside (tMin, tMax), or clearly inside and within kPlainRelativeError of itself: a long
 // triangle's plain t can be off by far more than rounding, enough to put a floor behind a shape
-// just beyond it. Everything else goes to tier 2.
-static bool FindPlaneT(const PlaneProblem *p, real tMin, real tMax, PlaneT *plane) {
+// just beyond it. Everything else goes to tier 2. Both tiers' t are kept in the triangle's
+// window (IntoWindow); moving t there changes it by at most as much as it changes t's bound, so
+// tier 1's early answers stay right.
+static bool FindPlaneT(const PlaneProblem *p, real near, real far, real tMin, real tMax,
+                       PlaneT *plane) {
     dvec3 toA = Sub(p->a, p->origin);
     double denominator = DotD(p->n, p->dir);
     double t = DotD(p->n, toA) / denominator;
-    if (!std::isfinite(t)) // the ray is parallel to the plane, or n is 0
+    if (!std::isfinite(t) || !(near <= far)) // parallel to the plane, n is 0, or no window
         return false;
-    *plane = {t, PlainError(p, toA, t, denominator)};
-    if (!(t - plane->error < (double)tMax) || !(t + plane->error > (double)tMin))
+    *plane = IntoWindow({t, PlainError(p, toA, t, denominator)}, near, far);
+    if (!(plane->t - plane->error < (double)tMax) || !(plane->t + plane->error > (double)tMin))
         return false;
-    if (!(t - plane->error > 0) || plane->error > kPlainRelativeError * std::fabs(t))
-        *plane = WidePlaneT(p);
+    if (!(plane->t - plane->error > 0) || plane->error > kPlainRelativeError * std::fabs(plane->t))
+        *plane = IntoWindow(WidePlaneT(p), near, far);
     return (real)plane->t > tMin && (real)plane->t < tMax && plane->t > plane->error;
 }
 
@@ -212,8 +227,12 @@ static bool FindPlaneT(const PlaneProblem *p, real tMin, real tMax, PlaneT *plan
 bool RobustPlaneHit(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit) {
     PlaneProblem p;
     SetUpPlane(tri, ray, &p);
+    Box box = TriangleBox(tri);
+    SlabRay slab = MakeSlabRay(ray);
+    real near, far;
+    SlabInterval(box.lo, box.hi, box.size, &slab, &near, &far);
     PlaneT plane;
-    if (!FindPlaneT(&p, tMin, tMax, &plane))
+    if (!FindPlaneT(&p, near, far, tMin, tMax, &plane))
         return false;
 
     // The unit normal, for shading, and the side the ray came from. A sliver's n may be so small
@@ -227,13 +246,12 @@ bool RobustPlaneHit(const Triangle *tri, const Ray *ray, real tMin, real tMax, R
         n = Scale(std::ldexp(1.0, -std::ilogb(largest)), n);
     double inverse = 1 / std::sqrt(DotD(n, n));
     vec3 normal = {(real)(inverse * n.x), (real)(inverse * n.y), (real)(inverse * n.z)};
-    hit->frontFace = !(Dot(ray->dir, normal) > 0);
-    hit->normal = hit->frontFace ? normal : -normal;
 
     real t = (real)plane.t;
     vec3 along = t * ray->dir;
     if (!IsFinite(ray->origin + along)) // t finite, but the point beyond the range of numbers
         return false;
+    SetFaceNormal(ray, normal, hit); // (a miss leaves *hit as it was)
     hit->t = t;
     hit->point = ray->origin + along;
     real tError = (real)plane.error + Gamma(1) * t;

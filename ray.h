@@ -398,6 +398,69 @@ inline vec3 SafeNormalize(vec3 v) {
     return length > 0 ? (1 / length) * w : w;
 }
 
+// ---- boxes along a ray (plane.cpp and the BVH in kernel.cpp) --------------------------------
+
+// Where a ray's line passes through an axis-aligned box, widened by kBoxAllowance of the
+// coordinates' sizes: the box test of the BVH, and the window a triangle's hit must lie in.
+// Both use this one function, with the same rounding, so a node's window always holds the
+// windows of the triangles below it (each step is monotonic: a larger box, larger bounds). 128 u
+// is about three times the widest error bound of a triangle's hit point (plane.cpp), so a hit on
+// the triangle always lies inside its window.
+const real kBoxAllowance = 128 * kUnitRoundoff;
+
+// The per-ray half: origin, 1/d per axis (an infinity for a 0 component), the origin's size.
+struct SlabRay {
+    vec3 origin, inverse;
+    real originSize; // largest |origin component|
+};
+inline SlabRay MakeSlabRay(const Ray *ray) {
+    return {
+        ray->origin, {1 / ray->dir.x, 1 / ray->dir.y, 1 / ray->dir.z}, MaxComponent(ray->origin)};
+}
+
+// The interval of t in which the line is inside the box lo..hi, whose largest |coordinate| is
+// `size`, widened on every side by kBoxAllowance (size + the origin's size). A 0 * infinity (a
+// ray along a box face) is NaN and restricts nothing, nor does a box of non-finite size.
+inline void SlabInterval(const real lo[3], const real hi[3], real size, const SlabRay *r,
+                         real *tNear, real *tFar) {
+    real pad = kBoxAllowance * (size + r->originSize);
+    const real o[3] = {r->origin.x, r->origin.y, r->origin.z};
+    const real inv[3] = {r->inverse.x, r->inverse.y, r->inverse.z};
+    real near = -kInfinity, far = kInfinity;
+    for (int i = 0; i < 3; i++) {
+        real a = ((lo[i] - pad) - o[i]) * inv[i], b = ((hi[i] + pad) - o[i]) * inv[i];
+        if (a > b) {
+            real swap = a;
+            a = b, b = swap;
+        }
+        near = a > near ? a : near; // (NaN compares false: no restriction)
+        far = b < far ? b : far;
+    }
+    *tNear = near, *tFar = far;
+}
+
+// A triangle's bounding box and its largest |coordinate|. A corner that is not finite makes the
+// box infinite: it holds every point, so no window or node that holds it can exclude a hit.
+struct Box {
+    real lo[3], hi[3];
+    real size;
+};
+inline Box TriangleBox(const Triangle *tri) {
+    const vec3 corner[3] = {tri->a, tri->b, tri->c};
+    Box box;
+    for (int i = 0; i < 3; i++) {
+        real c[3] = {Component(corner[0], i), Component(corner[1], i), Component(corner[2], i)};
+        box.lo[i] = std::fmin(std::fmin(c[0], c[1]), c[2]);
+        box.hi[i] = std::fmax(std::fmax(c[0], c[1]), c[2]);
+    }
+    box.size = std::fmax(MaxComponent({box.lo[0], box.lo[1], box.lo[2]}),
+                         MaxComponent({box.hi[0], box.hi[1], box.hi[2]}));
+    if (!IsFinite(tri->a) || !IsFinite(tri->b) || !IsFinite(tri->c))
+        for (int i = 0; i < 3; i++)
+            box.lo[i] = -kInfinity, box.hi[i] = kInfinity, box.size = kInfinity;
+    return box;
+}
+
 // ---- geometry.cpp: ray/shape intersection ----------------------------------------------------
 
 // Writes the fields every shape fills the same way; `outwardNormal` must be unit length.
