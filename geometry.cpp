@@ -157,7 +157,7 @@ bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax
     if (s.k == 0)
         s.ray = *ray;
     ShearRay(&s.ray, &shear);
-    if (!IntersectWatertight(tri, &s.ray, &shear, s.tMin, s.tMax, &found) ||
+    if (!IntersectWatertight(tri, nullptr, &s.ray, &shear, s.tMin, s.tMax, &found) ||
         !ScaleBack(&s, tMin, tMax, &found))
         return false;
     *hit = found;
@@ -215,7 +215,13 @@ static bool HitShapes(const Scene *scene, Methods methods, const Ray *given, con
     if (methods.triangle == TRIANGLE_WATERTIGHT) {
         RayShear shear; // the per-ray half of the test, once for all the triangles
         ShearRay(ray, &shear);
-        found = HitWatertightTriangles(scene->triangles.data(), (int)scene->triangles.size(),
+        if (LayoutIsCurrent(scene)) // the same answers, faster (kernel.cpp)
+            found = HitCommittedTriangles(scene, skipTriangle, ray, &shear, s.tMin, s.tMax, anyHit,
+                                          hit) ||
+                    found;
+        else
+            found =
+                HitWatertightTriangles(scene->triangles.data(), (int)scene->triangles.size(),
                                        skipTriangle, ray, &shear, s.tMin, s.tMax, anyHit, hit) ||
                 found;
         return found && ScaleBack(&s, start->tMin, tMax, hit);

@@ -39,6 +39,8 @@ const char *kUsage =
     "                           bound, ignore hits closer than E (1e-4), or skip the shape\n"
     "  --camera-ray eye|slides  primary rays from the eye, or from the screen with unit length\n"
     "  --fresnel exact|schlick  how much glass reflects\n"
+    "  --layout auto|list|bvh   how the triangles are searched: a BVH from 32 triangles on\n"
+    "                           (auto, default), one list, or a BVH; the answers are the same\n"
     "  --view normal|depth|id|cost|shadow\n"
     "                           draw a debug view instead of the lit image (default output:\n"
     "                           the image's name with _VIEW added, e.g. reference_normal.png)\n"
@@ -166,6 +168,7 @@ struct ChoiceOption {
 static const ChoiceOption kChoices[] = {
     {"--aa", {"grid", "jitter", "adaptive"}, &Options::sampling},
     {"--methods", {"robust", "handout"}, &Options::methodSet},
+    {"--layout", {"auto", "list", "bvh"}, &Options::layout},
     {"--sphere", {"stable", "textbook"}, &Options::sphere},
     {"--triangle", {"watertight", "cramer", "plane"}, &Options::triangle},
     {"--camera-ray", {"eye", "slides"}, &Options::cameraRay},
@@ -218,7 +221,7 @@ static const struct {
                 {"--methods", 1}, {"--self-hit", 1},  {"--camera-ray", 1}, {"--fresnel", 1},
                 {"--view", 1},    {"--ray", 6},       {"--rays", 1},       {"--pixel", 2},
                 {"--compare", 2}, {"--tolerance", 1}, {"--stats", 0},      {"--help", 0},
-                {"-h", 0},        {"--version", 0}};
+                {"-h", 0},        {"--version", 0},   {"--layout", 1}};
 
 // What must not be given together: `seen` lists the options given, each between spaces.
 static bool CheckCombinations(const Options *opt, const std::string &seen, std::string *error) {

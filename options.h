@@ -10,6 +10,7 @@ struct Options {
     int width = 0, height = 0, spp = 1, depth = 0, threads = 0;
     int sampling = 0;  // --aa: grid, jitter, adaptive, in SampleMethod's order
     int methodSet = 0; // --methods: robust, handout
+    int layout = 0;    // --layout: auto, list, bvh, in LayoutChoice's order
     int sphere = -1, triangle = -1, selfHit = -1, cameraRay = -1, fresnel = -1; // -1: from the set
     real epsilon = 0; // --self-hit epsilon=E
     bool stats = false, help = false, version = false;

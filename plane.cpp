@@ -224,13 +224,15 @@ static bool FindPlaneT(const PlaneProblem *p, real near, real far, real tMin, re
 // The hit record for a triangle whose interior the ray passes through (the caller has decided
 // that): t from the plane (FindPlaneT). The point is o + t d, which lies on the plane to within
 // its bound: the rounding of o + t d itself, and t's error times |d|.
-bool RobustPlaneHit(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit) {
+bool RobustPlaneHit(const Triangle *tri, const Box *box, const Ray *ray, const SlabRay *slab,
+                    real tMin, real tMax, RayHit *hit) {
     PlaneProblem p;
     SetUpPlane(tri, ray, &p);
-    Box box = TriangleBox(tri);
-    SlabRay slab = MakeSlabRay(ray);
+    Box own;
+    if (!box)
+        own = TriangleBox(tri), box = &own;
     real near, far;
-    SlabInterval(box.lo, box.hi, box.size, &slab, &near, &far);
+    SlabInterval(box->lo, box->hi, box->size, slab, &near, &far);
     PlaneT plane;
     if (!FindPlaneT(&p, near, far, tMin, tMax, &plane))
         return false;

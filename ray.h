@@ -174,6 +174,56 @@ enum ShadingModel {
 };
 
 // Everything a render needs to know about the world. Shapes name materials by index.
+// ---- the committed scene: the triangles in the layout the fast loop reads (commit.cpp) -------
+
+// A scene is written as the handouts' structs; once per render CommitScene (like Embree's scene
+// commit) copies its triangles into blocks of kLanes, coordinate by coordinate, which the
+// kernel (kernel.cpp) tests kLanes at a time, and, for a scene large enough that it pays, builds
+// a bounding volume hierarchy over them. The answers are the very bits of the plain loop.
+const int kLanes = 32 / (int)sizeof(real); // 4 doubles or 8 floats: one 256-bit vector
+
+// An axis-aligned box, and its largest |coordinate| (TriangleBox, SlabInterval).
+struct Box {
+    real lo[3], hi[3];
+    real size;
+};
+
+struct TriangleBlock {
+    alignas(32) real corner[9][kLanes]; // a.x a.y a.z b.x b.y b.z c.x c.y c.z, lane by lane
+    int index[kLanes];                  // each lane's place in scene->triangles; -1: empty
+};
+
+// A node of the BVH: the box of every triangle below it, as TriangleBox makes them (the box
+// test, SlabInterval, widens it). An inner node's first child follows it in the array.
+struct BvhNode {
+    real lo[3], hi[3];
+    real size;      // the box's largest |coordinate|
+    int axis;       // inner: the axis the children were split on
+    int second;     // inner: the second child's place
+    int firstBlock; // leaf: its blocks, firstBlock .. firstBlock + blockCount - 1
+    int blockCount; // 0 for an inner node
+};
+
+// What CommitScene builds: a BVH, the blocks alone (a list), or what pays for the scene's size.
+enum LayoutChoice { LAYOUT_AUTO, LAYOUT_LIST, LAYOUT_BVH };
+
+struct SceneLayout {
+    std::vector<TriangleBlock> blocks; // in scene order, or in BVH leaf order
+    std::vector<BvhNode> nodes;        // empty: no BVH, the blocks are one list
+    std::vector<Box> boxes;            // each triangle's TriangleBox, by its place in the scene
+    size_t triangleCount = 0;          // the number of triangles it was built from
+    bool committed = false;
+    // A copy of a Scene may then be edited, so it starts uncommitted.
+    SceneLayout() = default;
+    SceneLayout(const SceneLayout &) {}
+    SceneLayout &operator=(const SceneLayout &) {
+        blocks.clear(), nodes.clear(), boxes.clear(), triangleCount = 0, committed = false;
+        return *this;
+    }
+    SceneLayout(SceneLayout &&) = default;
+    SceneLayout &operator=(SceneLayout &&) = default;
+};
+
 struct Scene {
     int width, height; // image size in pixels
     Camera camera;
@@ -185,6 +235,7 @@ struct Scene {
     std::vector<Sphere> spheres;
     std::vector<Triangle> triangles;
     std::vector<Light> lights;
+    SceneLayout layout; // set by CommitScene; the shape loop uses it only while it is current
 };
 
 // ---- the numerical methods: robust, or the handouts' (geometry.cpp, handout.cpp, shade.cpp) --
@@ -439,25 +490,19 @@ inline void SlabInterval(const real lo[3], const real hi[3], real size, const Sl
     *tNear = near, *tFar = far;
 }
 
-// A triangle's bounding box and its largest |coordinate|. A corner that is not finite makes the
-// box infinite: it holds every point, so no window or node that holds it can exclude a hit.
-struct Box {
-    real lo[3], hi[3];
-    real size;
-};
+// A triangle's bounding box (Box). A corner that is not finite makes the box infinite: it holds
+// every point, so no window or node that holds it can exclude a hit.
 inline Box TriangleBox(const Triangle *tri) {
-    const vec3 corner[3] = {tri->a, tri->b, tri->c};
-    Box box;
-    for (int i = 0; i < 3; i++) {
-        real c[3] = {Component(corner[0], i), Component(corner[1], i), Component(corner[2], i)};
-        box.lo[i] = std::fmin(std::fmin(c[0], c[1]), c[2]);
-        box.hi[i] = std::fmax(std::fmax(c[0], c[1]), c[2]);
-    }
+    vec3 a = tri->a, b = tri->b, c = tri->c;
+    Box box = {{std::fmin(std::fmin(a.x, b.x), c.x), std::fmin(std::fmin(a.y, b.y), c.y),
+                std::fmin(std::fmin(a.z, b.z), c.z)},
+               {std::fmax(std::fmax(a.x, b.x), c.x), std::fmax(std::fmax(a.y, b.y), c.y),
+                std::fmax(std::fmax(a.z, b.z), c.z)},
+               0};
     box.size = std::fmax(MaxComponent({box.lo[0], box.lo[1], box.lo[2]}),
                          MaxComponent({box.hi[0], box.hi[1], box.hi[2]}));
-    if (!IsFinite(tri->a) || !IsFinite(tri->b) || !IsFinite(tri->c))
-        for (int i = 0; i < 3; i++)
-            box.lo[i] = -kInfinity, box.hi[i] = kInfinity, box.size = kInfinity;
+    if (!std::isfinite(box.size) || !IsFinite(a) || !IsFinite(b) || !IsFinite(c))
+        box = {{-kInfinity, -kInfinity, -kInfinity}, {kInfinity, kInfinity, kInfinity}, kInfinity};
     return box;
 }
 
@@ -485,7 +530,9 @@ bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real
 // The hit record of a triangle whose interior the ray passes through (plane.cpp): t from the
 // triangle's plane, accurate for triangles of any length, and the point o + t d; false if t is
 // outside (tMin, tMax) or within its rounding error of 0 (the ray has just left this plane).
-bool RobustPlaneHit(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit);
+// `box` is the triangle's TriangleBox, or null to compute it here; `slab` is the ray's.
+bool RobustPlaneHit(const Triangle *tri, const Box *box, const Ray *ray, const SlabRay *slab,
+                    real tMin, real tMax, RayHit *hit);
 
 // What a ray must not count as a hit besides t outside its interval: hits at t <= tMin, and the
 // shape it leaves (index -1: none). Set by LeaveSurface and ShadowRay from the self-hit method;
@@ -534,19 +581,38 @@ bool ShadowRay(const RayHit *hit, vec3 lightPosition, const Methods *methods, Ra
 struct RayShear {
     int kz;
     vec3 origin;
-    real sx, sy; // d[kx]/d[kz] and d[ky]/d[kz]
+    real sx, sy;  // d[kx]/d[kz] and d[ky]/d[kz]
+    SlabRay slab; // the ray as boxes see it (the windows of plane.cpp, the BVH)
 };
 void ShearRay(const Ray *ray, RayShear *shear);
 
 // The watertight test of one triangle for a ray whose shear is computed: as IntersectTriangle.
-bool IntersectWatertight(const Triangle *tri, const Ray *ray, const RayShear *shear, real tMin,
-                         real tMax, RayHit *hit);
+bool IntersectWatertight(const Triangle *tri, const Box *box, const Ray *ray, const RayShear *shear,
+                         real tMin, real tMax, RayHit *hit);
 
 // The triangle half of the shape loop (HitShapes) for the watertight method: the nearest hit
 // (the first, with anyHit) among triangles[0..n) but `skip`, with t in (tMin, tMax). Compiled once
 // per main axis, with the first step of the test inlined: most triangles end there.
 bool HitWatertightTriangles(const Triangle *triangles, int n, int skip, const Ray *ray,
                             const RayShear *shear, real tMin, real tMax, bool anyHit, RayHit *hit);
+
+// ---- commit.cpp and kernel.cpp: the committed scene ------------------------------------------
+
+// Builds scene->layout from the scene's triangles (see SceneLayout): once per render, after the
+// scene is complete. The shape loop answers the same with or without it, only faster.
+void CommitScene(Scene *scene, LayoutChoice choice);
+
+// True while scene->layout was built from the triangles the scene holds.
+inline bool LayoutIsCurrent(const Scene *scene) {
+    return scene->layout.committed && scene->layout.triangleCount == scene->triangles.size();
+}
+
+// HitWatertightTriangles over the committed layout: the same hit, to the bit.
+bool HitCommittedTriangles(const Scene *scene, int skip, const Ray *ray, const RayShear *shear,
+                           real tMin, real tMax, bool anyHit, RayHit *hit);
+
+// The instruction set the kernel runs on this machine ("avx2", "sse2"), for --stats.
+const char *KernelInstructions();
 
 // ---- shade.cpp: lighting and the ray chain ---------------------------------------------------
 

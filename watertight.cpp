@@ -49,7 +49,7 @@ template <int kz> static inline vec3 RenameAxes(vec3 v) {
 // changes nothing for a two-sided test, so it is left out.)
 template <int kz> static void ShearRayAxes(const Ray *ray, RayShear *shear) {
     vec3 d = RenameAxes<kz>(ray->dir);
-    *shear = {kz, RenameAxes<kz>(ray->origin), d.x / d.z, d.y / d.z};
+    *shear = {kz, RenameAxes<kz>(ray->origin), d.x / d.z, d.y / d.z, MakeSlabRay(ray)};
 }
 
 void ShearRay(const Ray *ray, RayShear *shear) {
@@ -131,8 +131,8 @@ static inline bool EdgesDisagree(const ShearedTriangle *s, real *u, real *v, rea
 // so a shared edge's function is the same number with the opposite sign, and the one case in
 // which rounding can lie, a value of exactly 0, is recomputed exactly. No epsilon anywhere.
 template <int kz>
-static bool IntersectSheared(const Triangle *tri, const Ray *ray, const RayShear *k, real tMin,
-                             real tMax, RayHit *hit) {
+static bool IntersectSheared(const Triangle *tri, const Box *box, const Ray *ray, const RayShear *k,
+                             real tMin, real tMax, RayHit *hit) {
     // Translate the corners to the ray origin and shear them so the ray is the +z axis
     ShearedTriangle s = ShearCorners<kz>(tri, k);
 
@@ -155,16 +155,16 @@ static bool IntersectSheared(const Triangle *tri, const Ray *ray, const RayShear
     // Inside: where, from the triangle's plane (plane.cpp). The paper's own
     // t = (U Az + V Bz + W Cz) / (U + V + W) loses about u L^2 / w for a triangle of length L and
     // width w, more than the 1.5 units to the floor of a corridor 1e8 long.
-    return RobustPlaneHit(tri, ray, tMin, tMax, hit);
+    return RobustPlaneHit(tri, box, ray, &k->slab, tMin, tMax, hit);
 }
 
-bool IntersectWatertight(const Triangle *tri, const Ray *ray, const RayShear *shear, real tMin,
-                         real tMax, RayHit *hit) {
+bool IntersectWatertight(const Triangle *tri, const Box *box, const Ray *ray, const RayShear *shear,
+                         real tMin, real tMax, RayHit *hit) {
     if (shear->kz == 0)
-        return IntersectSheared<0>(tri, ray, shear, tMin, tMax, hit);
+        return IntersectSheared<0>(tri, box, ray, shear, tMin, tMax, hit);
     if (shear->kz == 1)
-        return IntersectSheared<1>(tri, ray, shear, tMin, tMax, hit);
-    return IntersectSheared<2>(tri, ray, shear, tMin, tMax, hit);
+        return IntersectSheared<1>(tri, box, ray, shear, tMin, tMax, hit);
+    return IntersectSheared<2>(tri, box, ray, shear, tMin, tMax, hit);
 }
 
 // The first step of IntersectSheared, small enough to sit inside the loop: true if the ray
@@ -184,7 +184,7 @@ static bool HitLoop(const Triangle *triangles, int n, int skip, const Ray *ray,
     bool found = false;
     for (int i = 0; i < n; i++) {
         if (PassesOutside<kz>(&triangles[i], shear) || i == skip ||
-            !IntersectSheared<kz>(&triangles[i], ray, shear, tMin, tMax, hit))
+            !IntersectSheared<kz>(&triangles[i], nullptr, ray, shear, tMin, tMax, hit))
             continue; // (the skip before the test: a test that hits writes *hit)
         hit->index = i;
         tMax = hit->t;
