@@ -96,6 +96,12 @@ build/double/rtbench: $(call objs,build/double,$(BENCH_OBJS)) $(DOUBLE_CORE)
 build/float/rtbench: $(call objs,build/float,$(BENCH_OBJS)) $(FLOAT_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
+# The speed baseline: a plain float student solution of the assignment (bench/student.cpp, not
+# part of rt), built with exactly -O2, as the speed target states, not with CXXFLAGS.
+build/student: bench/student.cpp
+	@mkdir -p $(@D)
+	$(CXX) -O2 -std=c++17 -o $@ $< $(PNG_CFLAGS) $(PNG_LIBS)
+
 bench: ray ray_float build/double/rtbench build/float/rtbench
 	@sh bench/bench.sh
 
