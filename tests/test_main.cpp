@@ -74,6 +74,7 @@ int main() {
     TestRanges();
     TestFiles();
     TestMethods();
+    TestLayout();
     TestSceneFiles();
     TestProbes();
     TestProgram();

@@ -1,0 +1,264 @@
+// tests/test_layout.cpp -- the committed scene answers exactly what the plain loop answers.
+//
+// The fast layout (commit.cpp, kernel.cpp) promises the very bits of the reference functions:
+// the same t, point, normal, error bound and shape, with or without the BVH, in double and in
+// float. Each check here asks the same question three ways: the scene as written (the plain
+// loop of watertight.cpp), committed as one list of blocks, and committed with a BVH, and
+// compares every field of the answers.
+#include "hard_cases.h"
+#include "robust_scenes.h"
+#include "test.h"
+
+#include <algorithm>
+#include <cstdio>
+
+static const bool kDouble = sizeof(real) == sizeof(double);
+
+// Every field of two hit records, bit for bit (the struct has padding, so not memcmp).
+static bool SameBits(real a, real b) { return memcmp(&a, &b, sizeof a) == 0; }
+static bool SameBits(vec3 a, vec3 b) {
+    return SameBits(a.x, b.x) && SameBits(a.y, b.y) && SameBits(a.z, b.z);
+}
+static bool SameHit(const RayHit &a, const RayHit &b) {
+    return SameBits(a.t, b.t) && SameBits(a.point, b.point) && SameBits(a.normal, b.normal) &&
+           a.frontFace == b.frontFace && a.material == b.material && a.shape == b.shape &&
+           a.index == b.index && SameBits(a.pointError, b.pointError);
+}
+
+// The three ways to ask: as written, one list of blocks, a BVH.
+struct Layouts {
+    Scene plain, list, tree;
+};
+static void MakeLayouts(const Scene &scene, Layouts *l) {
+    l->plain = scene, l->list = scene, l->tree = scene; // (a copy starts uncommitted)
+    CommitScene(&l->list, LAYOUT_LIST);
+    CommitScene(&l->tree, LAYOUT_BVH);
+}
+
+// One ray asked all three ways, nearest hit and any hit, from the eye and leaving the shape it
+// hit (the second handout's skip): false at the first answer that differs.
+static bool SameAnswers(const Layouts *l, const Ray *ray, real tMin, real tMax) {
+    const Scene *scenes[3] = {&l->plain, &l->list, &l->tree};
+    RayHit hits[3];
+    bool found[3], any[3];
+    for (int k = 0; k < 3; k++) {
+        found[k] = FindNearestHit(scenes[k], kRobustMethods, ray, tMin, tMax, &hits[k]);
+        any[k] = AnyHit(scenes[k], kRobustMethods, ray, tMin, tMax);
+    }
+    for (int k = 1; k < 3; k++)
+        if (found[k] != found[0] || any[k] != any[0] || (found[0] && !SameHit(hits[k], hits[0])))
+            return false;
+    if (!found[0] || hits[0].shape != SHAPE_TRIANGLE)
+        return true;
+    Methods skip = kRobustMethods;
+    skip.selfHit = SELF_HIT_SKIP;
+    Ray next;
+    RayStart start;
+    LeaveSurface(&hits[0], Reflect(ray->dir, hits[0].normal), &skip, &next, &start);
+    RayHit again[3];
+    bool foundAgain[3];
+    for (int k = 0; k < 3; k++)
+        foundAgain[k] = FindNearestHitFrom(scenes[k], skip, &next, &start, kInfinity, &again[k]);
+    for (int k = 1; k < 3; k++)
+        if (foundAgain[k] != foundAgain[0] || (foundAgain[0] && !SameHit(again[k], again[0])))
+            return false;
+    return true;
+}
+
+// A closed, watertight sphere of 8 * 4^level triangles (a subdivided octahedron, corners
+// pushed out to radius r) around c: rays aimed at its corners and edge midpoints meet shared
+// edges and corners, where ties between triangles are decided by their order in the scene.
+static void AddOctasphere(Scene *scene, vec3 c, real r, int level) {
+    std::vector<Triangle> faces;
+    vec3 p[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    int f[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                   {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    for (auto &t : f)
+        faces.push_back({p[t[0]], p[t[1]], p[t[2]], 0});
+    for (int k = 0; k < level; k++) {
+        std::vector<Triangle> finer;
+        for (const Triangle &t : faces) {
+            vec3 ab = SafeNormalize(t.a + t.b), bc = SafeNormalize(t.b + t.c);
+            vec3 ca = SafeNormalize(t.c + t.a);
+            finer.push_back({t.a, ab, ca, 0}), finer.push_back({ab, t.b, bc, 0});
+            finer.push_back({ca, bc, t.c, 0}), finer.push_back({ab, bc, ca, 0});
+        }
+        faces = finer;
+    }
+    for (Triangle t : faces)
+        scene->triangles.push_back({c + r * t.a, c + r * t.b, c + r * t.c, 0});
+}
+
+// Random rays, and rays at every corner and edge midpoint, from points inside and outside.
+static int CountDifferences(const Scene &scene, vec3 centre, real spread, int rays, uint64_t seed) {
+    Layouts l;
+    MakeLayouts(scene, &l);
+    TestRng rng = {seed};
+    int differ = 0;
+    for (int i = 0; i < rays; i++) {
+        vec3 o = centre + spread * vec3{Uniform(&rng) - real(0.5), Uniform(&rng) - real(0.5),
+                                        Uniform(&rng) - real(0.5)};
+        Ray ray = {o, UnitDirection(Uniform(&rng), Uniform(&rng))};
+        differ += !SameAnswers(&l, &ray, 0, kInfinity);
+        const Triangle &t = scene.triangles[i % scene.triangles.size()];
+        vec3 targets[2] = {t.a, real(0.5) * (t.b + t.c)}; // a corner and an edge's midpoint
+        for (vec3 target : targets) {
+            ray = {o, target - o};
+            differ += !SameAnswers(&l, &ray, 0, kInfinity);
+        }
+    }
+    return differ;
+}
+
+// The test scene and a closed sphere mesh, at scales the robustness tables claim.
+static void TestSameHitsEveryLayout() {
+    Scene test;
+    BuildTestScene(&test);
+    CHECK(CountDifferences(test, {0, 1, -4}, 12, 400, 11) == 0,
+          "the test scene's 139 triangles: 1,200 rays give the same bits in every layout");
+    const double scales[] = {1e-30, 1e-6, 1, 1e6, 1e30};
+    const double floatScales[] = {1e-8, 1e-3, 1, 1e3, 1e8};
+    for (int k = 0; k < 5; k++) {
+        real scale = real(kDouble ? scales[k] : floatScales[k]);
+        Scene ball = WallScene();
+        AddOctasphere(&ball, {scale, -2 * scale, 3 * scale}, scale, 4); // 2,048 triangles
+        int differ = CountDifferences(ball, {scale, -2 * scale, 3 * scale}, 3 * scale, 300, 5 + k);
+        char what[120];
+        snprintf(what, sizeof what, "a closed 2,048-triangle sphere of radius %g: same bits",
+                 (double)scale);
+        CHECK(differ == 0, what);
+    }
+}
+
+// Closed boxes, long and turned (the robustness tables' hardest rows), in every layout.
+static void TestSameHitsInLongBoxes() {
+    const double lengths[] = {1e2, 1e8, 1e12};
+    const double floatLengths[] = {1e2, 1e3, 1e4};
+    for (int k = 0; k < 3; k++)
+        for (int turn = 0; turn < 2; turn++) {
+            double length = kDouble ? lengths[k] : floatLengths[k];
+            Scene box = BoxScene(length, turn);
+            char what[120];
+            snprintf(what, sizeof what, "a 4 x 3 x %g box%s: same bits", length,
+                     turn ? ", turned" : "");
+            CHECK(CountDifferences(box, {0, 0, 0}, 2, 300, 40 + k + turn) == 0, what);
+        }
+}
+
+// Ties: a flat grid of 2,048 triangles in shuffled scene order, and rays through its corners
+// and edge midpoints, each of which lies on two to six triangles at exactly the same t. The
+// list keeps the earliest in the scene (a later one must be strictly nearer); the BVH meets them
+// in its own order and must answer the same one. Two copies of one triangle tie everywhere.
+static void TestTiesGoToTheEarlierTriangle() {
+    Scene scene = WallScene();
+    const int n = 32;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            vec3 p = {real(i), real(j), -5}, px = {real(i + 1), real(j), -5};
+            vec3 py = {real(i), real(j + 1), -5}, pxy = {real(i + 1), real(j + 1), -5};
+            scene.triangles.push_back({p, px, pxy, 0});
+            scene.triangles.push_back({p, pxy, py, 0});
+        }
+    TestRng rng = {77};
+    for (int i = (int)scene.triangles.size() - 1; i > 0; i--) // Fisher-Yates
+        std::swap(scene.triangles[i], scene.triangles[(int)(Uniform(&rng) * (i + 1))]);
+    scene.triangles[1000] = scene.triangles[7];
+    Layouts l;
+    MakeLayouts(scene, &l);
+    int differ = 0, ties = 0;
+    for (int i = 0; i <= 2 * n; i++)
+        for (int j = 0; j <= 2 * n; j++) {
+            Ray ray = {{real(0.3), real(0.7), 0},
+                       {real(i) / 2 - real(0.3), real(j) / 2 - real(0.7), -5}};
+            differ += !SameAnswers(&l, &ray, 0, kInfinity);
+            RayHit hit;
+            ties += (i % 2 == 0 || j % 2 == 0) &&
+                    FindNearestHit(&l.plain, kRobustMethods, &ray, 0, kInfinity, &hit);
+        }
+    CHECK(ties > 3000, "the grid's corners and edge midpoints are hit");
+    CHECK(differ == 0, "ties between triangles go to the same one in every layout");
+    const Triangle &t = scene.triangles[7];
+    Ray ray = {{0, 0, 0}, real(1.0 / 3) * (t.a + t.b + t.c)}; // through its centroid
+    RayHit hit;
+    bool found = FindNearestHit(&l.tree, kRobustMethods, &ray, 0, kInfinity, &hit);
+    CHECK(found && hit.index == 7, "of two copies of a triangle, places 7 and 1000: place 7");
+}
+
+// The catalogue of hard cases (docs/robustness.md) with the triangle answered by a committed
+// one-triangle scene: each row's answer must be what the reference function gives, to the bit.
+static int sDifferences = 0; // counted by CommittedTriangle, for the check below
+static bool CommittedTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax,
+                              RayHit *hit) {
+    Scene scene = WallScene();
+    scene.triangles = {*tri};
+    Layouts l;
+    MakeLayouts(scene, &l);
+    RayHit reference, list, tree;
+    bool found = IntersectTriangle(tri, ray, tMin, tMax, &reference);
+    bool inList = FindNearestHit(&l.list, kRobustMethods, ray, tMin, tMax, &list);
+    bool inTree = FindNearestHit(&l.tree, kRobustMethods, ray, tMin, tMax, &tree);
+    reference.index = 0; // (the shape loop sets the index; IntersectTriangle does not)
+    if (inList != found || inTree != found ||
+        (found && (!SameHit(list, reference) || !SameHit(tree, reference))))
+        sDifferences++;
+    *hit = tree;
+    return inTree;
+}
+
+static void TestHardCasesCommitted() {
+    std::vector<HardCaseResult> results;
+    RunHardCases(IntersectSphere, CommittedTriangle, &results);
+    int failed = 0;
+    for (const HardCaseResult &r : results)
+        failed += !r.passed;
+    CHECK(failed == 0, "every hard case passes through the committed scene");
+    CHECK(sDifferences == 0, "and each answer is the reference function's, bit for bit");
+}
+
+// Images: the test scene and a mesh scene rendered plain, as a list and with a BVH, with
+// jittered samples and every effect: the same bytes.
+static void TestSameImages() {
+    Scene scenes[2];
+    BuildTestScene(&scenes[0]);
+    BuildDefaultScene(&scenes[1]);
+    AddOctasphere(&scenes[1], {-1, 2, -12}, real(1.5), 3);
+    scenes[1].triangles.back().material = 0; // and one mirror triangle among them
+    for (Scene &scene : scenes) {
+        scene.width = scene.height = 48;
+        Layouts l;
+        MakeLayouts(scene, &l);
+        RenderSettings settings = TestSettings(&scene);
+        settings.samplesPerPixel = 4;
+        settings.sampling = SAMPLES_JITTER;
+        Image images[3];
+        RayStats stats;
+        const Scene *three[3] = {&l.plain, &l.list, &l.tree};
+        for (int k = 0; k < 3; k++)
+            Render(three[k], &settings, &images[k], &stats);
+        CHECK(images[1].pixels == images[0].pixels && images[2].pixels == images[0].pixels,
+              "the same image bytes as written, as a list and with a BVH");
+    }
+}
+
+// A scene edited after its commit is not answered from the stale layout.
+static void TestEditedSceneIsNotStale() {
+    Scene scene = WallScene();
+    AddOctasphere(&scene, {0, 0, -5}, 1, 2);
+    CommitScene(&scene, LAYOUT_BVH);
+    scene.triangles.push_back({{-9, -9, -2}, {9, -9, -2}, {0, 9, -2}, 0});
+    Ray ray = {{0, 0, 0}, {0, 0, -1}};
+    RayHit hit;
+    CHECK(FindNearestHit(&scene, kRobustMethods, &ray, 0, kInfinity, &hit) && hit.t == 2,
+          "a triangle added after the commit, 2 in front of the eye, is hit at t = 2");
+    Scene copy = scene;
+    CHECK(!copy.layout.committed, "a copy of a committed scene starts uncommitted");
+}
+
+void TestLayout() {
+    TestSameHitsEveryLayout();
+    TestSameHitsInLongBoxes();
+    TestTiesGoToTheEarlierTriangle();
+    TestHardCasesCommitted();
+    TestSameImages();
+    TestEditedSceneIsNotStale();
+}
