@@ -37,10 +37,11 @@ struct BuildItem {
 
 const Box kEmptyBox = {{kInfinity, kInfinity, kInfinity}, {-kInfinity, -kInfinity, -kInfinity}, 0};
 
+// (Plain comparisons, not fmin and fmax, which are library calls: no box here holds a NaN.)
 static void Grow(Box *box, const Box *other) {
     for (int i = 0; i < 3; i++) {
-        box->lo[i] = std::fmin(box->lo[i], other->lo[i]);
-        box->hi[i] = std::fmax(box->hi[i], other->hi[i]);
+        box->lo[i] = other->lo[i] < box->lo[i] ? other->lo[i] : box->lo[i];
+        box->hi[i] = other->hi[i] > box->hi[i] ? other->hi[i] : box->hi[i];
     }
 }
 
@@ -185,8 +186,8 @@ static int BuildNode(Builder *b, int begin, int end, int depth) {
     Box box = kEmptyBox;
     for (int i = begin; i < end; i++)
         Grow(&box, &b->items[i].box);
-    box.size = std::fmax(MaxComponent({box.lo[0], box.lo[1], box.lo[2]}),
-                         MaxComponent({box.hi[0], box.hi[1], box.hi[2]}));
+    box.size = std::max(MaxComponent({box.lo[0], box.lo[1], box.lo[2]}),
+                        MaxComponent({box.hi[0], box.hi[1], box.hi[2]}));
     BvhNode node = {
         {box.lo[0], box.lo[1], box.lo[2]}, {box.hi[0], box.hi[1], box.hi[2]}, box.size, 0, 0, 0, 0};
     int axis = 0;

@@ -459,33 +459,38 @@ inline vec3 SafeNormalize(vec3 v) {
 // the triangle always lies inside its window.
 const real kBoxAllowance = 128 * kUnitRoundoff;
 
-// The per-ray half: origin, 1/d per axis (an infinity for a 0 component), the origin's size.
+// The per-ray half: origin, 1/d per axis (an infinity for a 0 component), the allowance for the
+// origin's size, and which end of each slab the ray meets first (the sign of 1/d).
 struct SlabRay {
     vec3 origin, inverse;
-    real originSize; // largest |origin component|
+    real originPad;   // kBoxAllowance * largest |origin component|
+    bool backward[3]; // 1/d < 0 on that axis: the ray meets hi before lo
 };
 inline SlabRay MakeSlabRay(const Ray *ray) {
-    return {
-        ray->origin, {1 / ray->dir.x, 1 / ray->dir.y, 1 / ray->dir.z}, MaxComponent(ray->origin)};
+    SlabRay r = {ray->origin,
+                 {1 / ray->dir.x, 1 / ray->dir.y, 1 / ray->dir.z},
+                 kBoxAllowance * MaxComponent(ray->origin),
+                 {}};
+    r.backward[0] = std::signbit(r.inverse.x), r.backward[1] = std::signbit(r.inverse.y);
+    r.backward[2] = std::signbit(r.inverse.z);
+    return r;
 }
 
 // The interval of t in which the line is inside the box lo..hi, whose largest |coordinate| is
 // `size`, widened on every side by kBoxAllowance (size + the origin's size). A 0 * infinity (a
-// ray along a box face) is NaN and restricts nothing, nor does a box of non-finite size.
+// ray along a box face) is NaN and restricts nothing, nor does a box of non-finite size. The
+// ends are taken by the sign of 1/d, not compared, so the loop has no branch to mispredict.
 inline void SlabInterval(const real lo[3], const real hi[3], real size, const SlabRay *r,
                          real *tNear, real *tFar) {
-    real pad = kBoxAllowance * (size + r->originSize);
+    real pad = kBoxAllowance * size + r->originPad;
     const real o[3] = {r->origin.x, r->origin.y, r->origin.z};
     const real inv[3] = {r->inverse.x, r->inverse.y, r->inverse.z};
     real near = -kInfinity, far = kInfinity;
     for (int i = 0; i < 3; i++) {
         real a = ((lo[i] - pad) - o[i]) * inv[i], b = ((hi[i] + pad) - o[i]) * inv[i];
-        if (a > b) {
-            real swap = a;
-            a = b, b = swap;
-        }
-        near = a > near ? a : near; // (NaN compares false: no restriction)
-        far = b < far ? b : far;
+        real first = r->backward[i] ? b : a, last = r->backward[i] ? a : b;
+        near = first > near ? first : near; // (NaN compares false: no restriction)
+        far = last < far ? last : far;
     }
     *tNear = near, *tFar = far;
 }
@@ -494,15 +499,16 @@ inline void SlabInterval(const real lo[3], const real hi[3], real size, const Sl
 // every point, so no window or node that holds it can exclude a hit.
 inline Box TriangleBox(const Triangle *tri) {
     vec3 a = tri->a, b = tri->b, c = tri->c;
-    Box box = {{std::fmin(std::fmin(a.x, b.x), c.x), std::fmin(std::fmin(a.y, b.y), c.y),
-                std::fmin(std::fmin(a.z, b.z), c.z)},
-               {std::fmax(std::fmax(a.x, b.x), c.x), std::fmax(std::fmax(a.y, b.y), c.y),
-                std::fmax(std::fmax(a.z, b.z), c.z)},
+    if (!IsFinite(a) || !IsFinite(b) || !IsFinite(c))
+        return {{-kInfinity, -kInfinity, -kInfinity}, {kInfinity, kInfinity, kInfinity}, kInfinity};
+    auto least = [](real x, real y, real z) { return x < y ? (x < z ? x : z) : (y < z ? y : z); };
+    auto most = [](real x, real y, real z) { return x > y ? (x > z ? x : z) : (y > z ? y : z); };
+    Box box = {{least(a.x, b.x, c.x), least(a.y, b.y, c.y), least(a.z, b.z, c.z)},
+               {most(a.x, b.x, c.x), most(a.y, b.y, c.y), most(a.z, b.z, c.z)},
                0};
-    box.size = std::fmax(MaxComponent({box.lo[0], box.lo[1], box.lo[2]}),
-                         MaxComponent({box.hi[0], box.hi[1], box.hi[2]}));
-    if (!std::isfinite(box.size) || !IsFinite(a) || !IsFinite(b) || !IsFinite(c))
-        box = {{-kInfinity, -kInfinity, -kInfinity}, {kInfinity, kInfinity, kInfinity}, kInfinity};
+    real lo = MaxComponent({box.lo[0], box.lo[1], box.lo[2]});
+    real hi = MaxComponent({box.hi[0], box.hi[1], box.hi[2]});
+    box.size = lo > hi ? lo : hi;
     return box;
 }
 

@@ -11,6 +11,8 @@
 //   bench robustness    prints the measured tables of docs/robustness.md (robustness.cpp)
 //   bench methods [DIR] what each numerical method costs and buys (methods.cpp); with DIR, also
 //                       the pictures of a fixed epsilon at the wrong scale
+//   bench layout DIR    render time against mesh size, list against BVH (layout.cpp):
+//                       DIR/layout.md and DIR/layout.svg
 //   bench time PROGRAM ARGS...   runs PROGRAM once (its standard output thrown away, its
 //                       standard error passed on) and prints its whole-process wall time in ms:
 //                       from fork to the end of waitpid, so the clock includes starting and
@@ -268,6 +270,7 @@ static int TimeProcess(char **command) {
 int ReportMain(const std::string &dir); // report.cpp
 int RobustnessTables();                 // robustness.cpp
 int MethodsTable(const char *folder);   // methods.cpp
+int LayoutTable(const char *folder);    // layout.cpp
 
 int main(int argc, char **argv) {
     std::string mode = argc > 1 ? argv[1] : "";
@@ -283,9 +286,12 @@ int main(int argc, char **argv) {
         return RobustnessTables();
     if (mode == "methods" && (argc == 2 || argc == 3))
         return MethodsTable(argc == 3 ? argv[2] : nullptr);
+    if (mode == "layout" && argc == 3)
+        return LayoutTable(argv[2]);
     if (mode != "rows" || argc != 3) {
         fprintf(stderr, "usage: bench rows DIR | bench report DIR | bench pngfloor RGB PNG | "
-                        "bench time PROGRAM ARGS... | bench robustness | bench methods [DIR]\n");
+                        "bench time PROGRAM ARGS... | bench robustness | bench methods [DIR] | "
+                        "bench layout DIR\n");
         return 2;
     }
     for (const BenchScene &b : kScenes)

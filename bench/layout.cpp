@@ -1,0 +1,168 @@
+// bench/layout.cpp -- what the committed layout buys: render time against mesh size, one list
+// of blocks against the BVH (`rtbench layout DIR`, part of `make bench`).
+//
+// The mesh is a closed sphere of 8 * 4^level triangles (a subdivided octahedron), lit by one
+// point light and seen whole, 256 x 256, one sample a pixel, one thread: primary and shadow
+// rays. Each time is the median of kRounds renders, the list and the BVH taken in turn so both
+// see the same machine load; min and max are printed beside it. Writes DIR/layout.md (the
+// table) and DIR/layout.svg (the log-log plot).
+#include "ray.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+static const int kRounds = 5;
+static const int kLevels[] = {1, 2, 3, 4, 5, 6, 7, 8}; // 32 to 524,288 triangles
+static const size_t kMostForList = 8192; // beyond this the list takes minutes: not timed
+
+static vec3 Unit(vec3 v) { return (1 / Length(v)) * v; }
+
+// The sphere mesh of radius 2 at (0, -0.5, -8), with the scene around it.
+static Scene SphereMesh(int level) {
+    Scene scene;
+    InitScene(&scene);
+    scene.width = scene.height = 256;
+    scene.materials = {{"white", {real(0.9), real(0.9), real(0.9)}, {1, 1, 1}, 0, 1, 0, 0}};
+    scene.lights = {{{3, 5, 0}, {1, 1, 1}}};
+    vec3 p[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    int f[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                   {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    std::vector<Triangle> faces;
+    for (auto &t : f)
+        faces.push_back({p[t[0]], p[t[1]], p[t[2]], 0});
+    for (int k = 0; k < level; k++) {
+        std::vector<Triangle> finer;
+        for (const Triangle &t : faces) {
+            vec3 ab = Unit(t.a + t.b), bc = Unit(t.b + t.c), ca = Unit(t.c + t.a);
+            finer.push_back({t.a, ab, ca, 0}), finer.push_back({ab, t.b, bc, 0});
+            finer.push_back({ca, bc, t.c, 0}), finer.push_back({ab, bc, ca, 0});
+        }
+        faces.swap(finer);
+    }
+    vec3 centre = {0, real(-0.5), -8};
+    for (const Triangle &t : faces)
+        scene.triangles.push_back({centre + 2 * t.a, centre + 2 * t.b, centre + 2 * t.c, 0});
+    return scene;
+}
+
+struct Timing {
+    std::vector<double> ms;
+    uint64_t rays;
+    double Median() const {
+        std::vector<double> v = ms;
+        std::sort(v.begin(), v.end());
+        return v[v.size() / 2];
+    }
+    double Min() const { return *std::min_element(ms.begin(), ms.end()); }
+    double Max() const { return *std::max_element(ms.begin(), ms.end()); }
+};
+
+static void TimeRender(const Scene *scene, Timing *timing) {
+    RenderSettings settings = {};
+    settings.width = scene->width, settings.height = scene->height;
+    settings.samplesPerPixel = 1, settings.sampling = SAMPLES_GRID, settings.depth = scene->depth;
+    settings.threads = 1, settings.methods = kRobustMethods, settings.showProgress = false;
+    PlanRender(scene, &settings);
+    Image image;
+    RayStats stats = {};
+    auto start = std::chrono::steady_clock::now();
+    Render(scene, &settings, &image, &stats);
+    std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - start;
+    timing->ms.push_back(ms.count());
+    timing->rays = stats.primary + stats.shadow;
+}
+
+// One row: the mesh at `level`, its commit time, the list's and the BVH's render times.
+struct Row {
+    size_t triangles;
+    double commitMs;
+    Timing list, tree;
+};
+
+static Row MeasureRow(int level) {
+    Row row;
+    Scene list = SphereMesh(level), tree = SphereMesh(level);
+    row.triangles = tree.triangles.size();
+    auto start = std::chrono::steady_clock::now();
+    CommitScene(&tree, LAYOUT_BVH);
+    row.commitMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    CommitScene(&list, LAYOUT_LIST);
+    for (int round = 0; round < kRounds; round++) { // in turn: the same load for both
+        if (row.triangles <= kMostForList)
+            TimeRender(&list, &row.list);
+        TimeRender(&tree, &row.tree);
+    }
+    return row;
+}
+
+static std::string Cell(const Timing &t) {
+    if (t.ms.empty())
+        return "(not timed)";
+    char text[96];
+    snprintf(text, sizeof text, "%.1f (%.1f-%.1f)", t.Median(), t.Min(), t.Max());
+    return text;
+}
+
+// The log-log plot: render time against triangles, the list and the BVH.
+static void WritePlot(const std::vector<Row> &rows, const std::string &path) {
+    FILE *svg = fopen(path.c_str(), "w");
+    if (!svg)
+        return;
+    fprintf(svg, "<svg xmlns='http://www.w3.org/2000/svg' width='640' height='400' "
+                 "font-family='sans-serif' font-size='12'>\n<rect width='640' height='400' "
+                 "fill='white'/>\n<line x1='70' y1='340' x2='610' y2='340' stroke='black'/>\n"
+                 "<line x1='70' y1='20' x2='70' y2='340' stroke='black'/>\n"
+                 "<text x='340' y='385' text-anchor='middle'>triangles (log)</text>\n"
+                 "<text x='18' y='180' transform='rotate(-90 18 180)' text-anchor='middle'>"
+                 "render ms, 256 x 256, one thread (log)</text>\n");
+    auto x = [](double n) { return 70 + 540 * (std::log10(n) - 1) / 5.0; };    // 10 .. 1e6
+    auto y = [](double ms) { return 340 - 320 * (std::log10(ms) + 1) / 6.0; }; // 0.1 .. 1e5
+    for (int d = 1; d <= 6; d++)
+        fprintf(svg, "<text x='%.0f' y='356' text-anchor='middle'>1e%d</text>\n",
+                x(std::pow(10, d)), d);
+    for (int d = -1; d <= 5; d++)
+        fprintf(svg, "<text x='64' y='%.0f' text-anchor='end'>%g</text>\n", y(std::pow(10, d)) + 4,
+                std::pow(10, d));
+    const char *colours[2] = {"crimson", "steelblue"};
+    for (int which = 0; which < 2; which++) {
+        std::string points;
+        for (const Row &r : rows) {
+            const Timing &t = which == 0 ? r.list : r.tree;
+            if (t.ms.empty())
+                continue;
+            char p[64];
+            snprintf(p, sizeof p, "%.1f,%.1f ", x((double)r.triangles), y(t.Median()));
+            points += p;
+        }
+        fprintf(svg, "<polyline points='%s' fill='none' stroke='%s' stroke-width='2'/>\n",
+                points.c_str(), colours[which]);
+    }
+    fprintf(svg, "<text x='90' y='40' fill='crimson'>one list of blocks</text>\n"
+                 "<text x='90' y='58' fill='steelblue'>BVH (binned SAH)</text>\n</svg>\n");
+    fclose(svg);
+}
+
+int LayoutTable(const char *folder) {
+    std::vector<Row> rows;
+    for (int level : kLevels)
+        rows.push_back(MeasureRow(level));
+    std::string path = std::string(folder) + "/layout.md";
+    FILE *md = fopen(path.c_str(), "w");
+    if (!md)
+        return 3;
+    fprintf(md,
+            "| triangles | BVH build ms | list render ms | BVH render ms | rays | BVH Mrays/s |\n"
+            "|---:|---:|---:|---:|---:|---:|\n");
+    for (const Row &r : rows)
+        fprintf(md, "| %zu | %.1f | %s | %s | %llu | %.2f |\n", r.triangles, r.commitMs,
+                Cell(r.list).c_str(), Cell(r.tree).c_str(), (unsigned long long)r.tree.rays,
+                r.tree.rays / r.tree.Median() / 1e3);
+    fclose(md);
+    WritePlot(rows, std::string(folder) + "/layout.svg");
+    return 0;
+}
