@@ -113,14 +113,24 @@ static void AppendBlocks(const std::vector<Triangle> &triangles, const int *inde
     }
 }
 
+// A node of the binary tree the heuristic builds, before it is collapsed to four children a
+// node (Collapse). An inner node's first child follows it.
+struct BinaryNode {
+    Box box;
+    int second;     // inner: the second child's place
+    int firstBlock; // leaf: its blocks, firstBlock .. firstBlock + blockCount - 1
+    int blockCount; // 0 for an inner node
+};
+
 struct Builder {
     const std::vector<Triangle> *triangles;
     std::vector<BuildItem> items;
-    SceneLayout *layout;
+    std::vector<BinaryNode> nodes;
+    SceneLayout *layout; // the blocks go here as the leaves are made
 };
 
 // A leaf of items[begin, end): its triangles' blocks, in the order of their places in the scene.
-static void MakeLeaf(Builder *b, int begin, int end, BvhNode *node) {
+static void MakeLeaf(Builder *b, int begin, int end, BinaryNode *node) {
     std::vector<int> index;
     for (int i = begin; i < end; i++)
         index.push_back(b->items[i].index);
@@ -144,9 +154,9 @@ static Box CentreBox(const Builder *b, int begin, int end) {
 // Where to split items[begin, end), which it reorders so the left ones come first: the surface
 // area heuristic's best boundary over the three axes, or -1 where a leaf costs less. Past
 // kMaxSahDepth, or where the centroids do not spread (all in one point), at the median.
-static int Partition(Builder *b, int begin, int end, const Box *node, int depth, int *axis) {
+static int Partition(Builder *b, int begin, int end, const Box *node, int depth) {
     Box centres = CentreBox(b, begin, end);
-    int n = end - begin, bestBin = 0;
+    int n = end - begin, bestBin = 0, axis = 0;
     real best = kInfinity, cmin = 0, scale = 0;
     for (int k = 0; k < 3 && depth < kMaxSahDepth; k++) {
         real extent = centres.hi[k] - centres.lo[k];
@@ -155,51 +165,87 @@ static int Partition(Builder *b, int begin, int end, const Box *node, int depth,
             continue;
         real cost = BestSplit(&b->items[begin], n, k, centres.lo[k], kBins / extent, node, &split);
         if (cost < best)
-            best = cost, bestBin = split, *axis = k, cmin = centres.lo[k], scale = kBins / extent;
+            best = cost, bestBin = split, axis = k, cmin = centres.lo[k], scale = kBins / extent;
     }
     BuildItem *first = &b->items[begin], *last = first + n;
     if (best < kInfinity) {
         if (best >= Blocks(n) && Blocks(n) <= kMaxLeafBlocks)
             return -1;
-        int k = *axis;
+        int k = axis;
         auto left = [=](const BuildItem &it) {
             return std::min(kBins - 1, (int)((it.centre[k] - cmin) * scale)) < bestBin;
         };
         return begin + (int)(std::partition(first, last, left) - first);
     }
-    *axis = 0;
     for (int k = 1; k < 3; k++)
-        if (centres.hi[k] - centres.lo[k] > centres.hi[*axis] - centres.lo[*axis])
-            *axis = k;
-    int k = *axis;
+        if (centres.hi[k] - centres.lo[k] > centres.hi[axis] - centres.lo[axis])
+            axis = k;
+    int k = axis;
     std::nth_element(first, first + n / 2, last, [k](const BuildItem &x, const BuildItem &y) {
         return x.centre[k] < y.centre[k];
     });
     return begin + n / 2;
 }
 
-// The subtree over items[begin, end), depth-first: a node, its first child right after it, then
-// its second. Returns the node's place.
+// The binary subtree over items[begin, end), depth-first: a node, its first child right after
+// it, then its second. Returns the node's place.
 static int BuildNode(Builder *b, int begin, int end, int depth) {
-    int place = (int)b->layout->nodes.size();
-    b->layout->nodes.emplace_back();
-    Box box = kEmptyBox;
+    int place = (int)b->nodes.size();
+    b->nodes.emplace_back();
+    BinaryNode node = {kEmptyBox, 0, 0, 0};
     for (int i = begin; i < end; i++)
-        Grow(&box, &b->items[i].box);
-    box.size = std::max(MaxComponent({box.lo[0], box.lo[1], box.lo[2]}),
-                        MaxComponent({box.hi[0], box.hi[1], box.hi[2]}));
-    BvhNode node = {
-        {box.lo[0], box.lo[1], box.lo[2]}, {box.hi[0], box.hi[1], box.hi[2]}, box.size, 0, 0, 0, 0};
-    int axis = 0;
-    int middle = end - begin <= kLanes ? -1 : Partition(b, begin, end, &box, depth, &axis);
+        Grow(&node.box, &b->items[i].box);
+    real lo = MaxComponent({node.box.lo[0], node.box.lo[1], node.box.lo[2]});
+    real hi = MaxComponent({node.box.hi[0], node.box.hi[1], node.box.hi[2]});
+    node.box.size = lo > hi ? lo : hi;
+    int middle = end - begin <= kLanes ? -1 : Partition(b, begin, end, &node.box, depth);
     if (middle < 0) {
         MakeLeaf(b, begin, end, &node);
     } else {
         BuildNode(b, begin, middle, depth + 1);
-        node.axis = axis;
         node.second = BuildNode(b, middle, end, depth + 1);
     }
-    b->layout->nodes[place] = node;
+    b->nodes[place] = node;
+    return place;
+}
+
+// The four-wide node over binary node `top`'s subtree (Embree's BVH4, made from a binary tree as
+// Wald, Benthin & Boulos 2008 do): it takes the two children, then opens the inner child of
+// largest area, until it has four or only leaves. Returns its place.
+static int Collapse(const Builder *b, int top, SceneLayout *layout) {
+    const std::vector<BinaryNode> &binary = b->nodes;
+    std::vector<int> kids;
+    if (binary[top].blockCount > 0)
+        kids = {top}; // the whole tree is one leaf
+    else
+        kids = {top + 1, binary[top].second};
+    while (kids.size() < (size_t)kWidth) {
+        int open = -1;
+        for (int k = 0; k < (int)kids.size(); k++)
+            if (binary[kids[k]].blockCount == 0 &&
+                (open < 0 || HalfArea(&binary[kids[k]].box) > HalfArea(&binary[kids[open]].box)))
+                open = k;
+        if (open < 0)
+            break;
+        int inner = kids[open];
+        kids[open] = inner + 1;
+        kids.insert(kids.begin() + open + 1, binary[inner].second);
+    }
+    int place = (int)layout->nodes.size();
+    layout->nodes.emplace_back();
+    BvhNode node = {};
+    for (int k = 0; k < kWidth; k++) {
+        node.blocks[k] = -1; // no child
+        if (k >= (int)kids.size())
+            continue;
+        const BinaryNode *kid = &binary[kids[k]];
+        for (int axis = 0; axis < 3; axis++)
+            node.lo[axis][k] = kid->box.lo[axis], node.hi[axis][k] = kid->box.hi[axis];
+        node.size[k] = kid->box.size;
+        node.blocks[k] = kid->blockCount;
+        node.child[k] = kid->blockCount > 0 ? kid->firstBlock : Collapse(b, kids[k], layout);
+    }
+    layout->nodes[place] = node;
     return place;
 }
 
@@ -209,7 +255,7 @@ void CommitScene(Scene *scene, LayoutChoice choice) {
     int n = (int)triangles.size();
     bool tree = choice == LAYOUT_BVH || (choice == LAYOUT_AUTO && (size_t)n >= kBvhMinTriangles);
     if (tree && n > 0) {
-        Builder b = {&triangles, std::vector<BuildItem>(n), &layout};
+        Builder b = {&triangles, std::vector<BuildItem>(n), {}, &layout};
         for (int i = 0; i < n; i++) {
             BuildItem *it = &b.items[i];
             it->box = TriangleBox(&triangles[i]);
@@ -220,6 +266,7 @@ void CommitScene(Scene *scene, LayoutChoice choice) {
         }
         layout.blocks.reserve(n / kLanes + n / 8 + 1);
         BuildNode(&b, 0, n, 0);
+        Collapse(&b, 0, &layout);
     } else {
         std::vector<int> index(n);
         for (int i = 0; i < n; i++)

@@ -123,41 +123,93 @@ static RT_INLINE bool TestBlocks(const TriangleBlock *blocks, int first, int cou
     return found;
 }
 
+// The four children of a node tested at once: SlabInterval for each, lane by lane, with the
+// same operations in the same order (so a child's window is exactly what SlabInterval gives).
+typedef real Quad __attribute__((vector_size(kWidth * sizeof(real))));
+typedef decltype(Quad() < Quad()) QuadMask;
+
+static RT_INLINE Quad LoadQuad(const real *p) {
+    Quad v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
+static RT_INLINE Quad SplatQuad(real x) {
+    Quad v;
+    for (int i = 0; i < kWidth; i++)
+        v[i] = x;
+    return v;
+}
+static RT_INLINE Quad Select(QuadMask m, Quad yes, Quad no) {
+    return (Quad)(((QuadMask)yes & m) | ((QuadMask)no & ~m));
+}
+
+static RT_INLINE void ChildWindows(const BvhNode *n, const SlabRay *r, Quad *tNear, Quad *tFar) {
+    Quad pad = SplatQuad(kBoxAllowance) * LoadQuad(n->size) + SplatQuad(r->originPad);
+    const real o[3] = {r->origin.x, r->origin.y, r->origin.z};
+    const real inv[3] = {r->inverse.x, r->inverse.y, r->inverse.z};
+    Quad near = SplatQuad(-kInfinity), far = SplatQuad(kInfinity);
+    for (int i = 0; i < 3; i++) {
+        Quad a = ((LoadQuad(n->lo[i]) - pad) - SplatQuad(o[i])) * SplatQuad(inv[i]);
+        Quad b = ((LoadQuad(n->hi[i]) + pad) - SplatQuad(o[i])) * SplatQuad(inv[i]);
+        Quad first = r->backward[i] ? b : a, last = r->backward[i] ? a : b;
+        near = Select(first > near, first, near); // (NaN compares false: no restriction)
+        far = Select(last < far, last, far);
+    }
+    *tNear = near, *tFar = far;
+}
+
+// A child waiting to be visited, and where its window begins.
+struct Pending {
+    int child, blocks; // as in BvhNode
+    real near;
+};
+
 // Deepest tree the walk can follow: commit.cpp's median splits past depth 48 halve the
-// triangles, so even 2^31 of them stay well inside.
+// triangles, so even 2^31 of them stay well inside. Each node visited leaves at most three
+// more children waiting than it takes away.
 const int kMaxDepth = 128;
 
-// The BVH walk: a node whose window (SlabInterval) misses (tMin, tMax) is skipped; an inner
-// node's children are visited nearer first (by the sign of the direction on the split axis), so
-// the nearest hit shrinks tMax early and prunes more.
+// The children of node n whose windows meet (tMin, tMax), onto the stack, the nearest on top.
+static RT_INLINE void PushChildren(const BvhNode *n, const Search *s, Pending *stack, int *top) {
+    Quad near, far;
+    ChildWindows(n, &s->shear->slab, &near, &far);
+    Pending hit[kWidth];
+    int count = 0;
+    for (int k = 0; k < kWidth; k++) {
+        if (n->blocks[k] < 0 || !(near[k] <= far[k] && near[k] <= s->tMax && far[k] >= s->tMin))
+            continue;
+        int at = count++; // insertion by near, farthest first
+        while (at > 0 && hit[at - 1].near < near[k])
+            hit[at] = hit[at - 1], at--;
+        hit[at] = {n->child[k], n->blocks[k], near[k]};
+    }
+    for (int k = 0; k < count; k++)
+        stack[(*top)++] = hit[k];
+}
+
+// The BVH walk: a child whose window (SlabInterval) misses (tMin, tMax) is skipped, the others
+// are visited nearest first, so the nearest hit shrinks tMax early, and a child whose window
+// begins beyond it by the time its turn comes is skipped too. (A window that begins exactly at
+// tMax is visited: it may hold a tie that an earlier triangle wins.)
 template <int kz>
 static RT_INLINE bool WalkTree(const SceneLayout *layout, Search *s, RayHit *hit) {
-    const BvhNode *nodes = layout->nodes.data();
-    int stack[kMaxDepth], top = 0, node = 0;
+    Pending stack[3 * kMaxDepth + kWidth];
+    int top = 0;
     bool found = false;
-    for (;;) {
-        const BvhNode *n = &nodes[node];
-        real near, far;
-        SlabInterval(n->lo, n->hi, n->size, &s->shear->slab, &near, &far);
-        if (near <= far && near <= s->tMax && far >= s->tMin) {
-            if (n->blockCount == 0) {
-                int nearer = node + 1, farther = n->second;
-                if (Component(s->ray->dir, n->axis) < 0)
-                    nearer = n->second, farther = node + 1;
-                stack[top++] = farther;
-                node = nearer;
-                continue;
-            }
-            if (TestBlocks<kz>(layout->blocks.data(), n->firstBlock, n->blockCount, s, hit)) {
-                found = true;
-                if (s->anyHit)
-                    return true;
-            }
+    PushChildren(&layout->nodes[0], s, stack, &top);
+    while (top > 0) {
+        Pending p = stack[--top];
+        if (p.near > s->tMax)
+            continue;
+        if (p.blocks == 0) {
+            PushChildren(&layout->nodes[p.child], s, stack, &top);
+        } else if (TestBlocks<kz>(layout->blocks.data(), p.child, p.blocks, s, hit)) {
+            found = true;
+            if (s->anyHit)
+                return true;
         }
-        if (top == 0)
-            return found;
-        node = stack[--top];
     }
+    return found;
 }
 
 template <int kz>

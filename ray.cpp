@@ -48,7 +48,7 @@ static void PrintLayout(const Scene *scene, double commitSeconds) {
     if (layout->nodes.empty())
         fprintf(stderr, "one list");
     else
-        fprintf(stderr, "a BVH of %zu nodes", layout->nodes.size());
+        fprintf(stderr, "a BVH of %zu nodes of %d", layout->nodes.size(), kWidth);
     fprintf(stderr, " (built in %.3g ms), kernel %s\n", commitSeconds * 1e3, KernelInstructions());
 }
 

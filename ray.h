@@ -193,15 +193,15 @@ struct TriangleBlock {
     int index[kLanes];                  // each lane's place in scene->triangles; -1: empty
 };
 
-// A node of the BVH: the box of every triangle below it, as TriangleBox makes them (the box
-// test, SlabInterval, widens it). An inner node's first child follows it in the array.
+// A node of the BVH, four children wide (Embree's BVH4): its children's boxes, as TriangleBox
+// makes them and coordinate by coordinate, so the kernel tests all four at once (SlabInterval
+// widens them). A child is another node, a leaf (a run of blocks), or missing.
+const int kWidth = 4;
 struct BvhNode {
-    real lo[3], hi[3];
-    real size;      // the box's largest |coordinate|
-    int axis;       // inner: the axis the children were split on
-    int second;     // inner: the second child's place
-    int firstBlock; // leaf: its blocks, firstBlock .. firstBlock + blockCount - 1
-    int blockCount; // 0 for an inner node
+    real lo[3][kWidth], hi[3][kWidth]; // each child's box, axis by axis
+    real size[kWidth];                 // each child's box's largest |coordinate|
+    int child[kWidth];                 // an inner child's node, or a leaf child's first block
+    int blocks[kWidth];                // a leaf child's blocks; 0: an inner child; -1: missing
 };
 
 // What CommitScene builds: a BVH, the blocks alone (a list), or what pays for the scene's size.
