@@ -99,6 +99,12 @@ build/float/rtbench: $(call objs,build/float,$(BENCH_OBJS)) $(FLOAT_CORE)
 bench: ray ray_float build/double/rtbench build/float/rtbench
 	@sh bench/bench.sh
 
+# The mesh generator (tools/make_mesh.cpp), for trying the `mesh` statement on large models:
+# `make build/make_mesh`. Not part of `make`: rt does not need it.
+build/make_mesh: tools/make_mesh.cpp
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $<
+
 clean:
 	rm -rf build ray ray_float
 
