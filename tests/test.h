@@ -72,5 +72,6 @@ void TestLongTriangles();
 void TestRanges();
 void TestFiles();
 void TestMethods();
+void TestMesh();
 
 #endif

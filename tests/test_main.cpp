@@ -75,6 +75,7 @@ int main() {
     TestFiles();
     TestMethods();
     TestSceneFiles();
+    TestMesh();
     TestProbes();
     TestProgram();
     TestCorpus();
