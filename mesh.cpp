@@ -29,7 +29,8 @@ static bool MeshFail(const char *meshName, int line, const std::string &message,
 // cos and sin of an angle in degrees. A multiple of 90 degrees gets exact values (0, +-1), so
 // `rotate y 90` moves a vertex to exactly the place a student predicts by hand; pi/2 in radians
 // is not a floating-point number, and cos(pi/2) would be 6e-17 instead of 0. The angle is first
-// reduced to (-360, 360) by fmod, which is exact, so `rotate z 3690` is as accurate as 90.
+// reduced to (-360, 360) by fmod, which is exact, so `rotate z 3645` is as accurate as 45; other
+// angles go through radians in double and are rounded once to real.
 static void CosSinDegrees(double degrees, real *cosine, real *sine) {
     static const real kCos[4] = {1, 0, -1, 0}, kSin[4] = {0, 1, 0, -1}; // 0, 90, 180, 270
     double reduced = std::fmod(degrees, 360.0);
@@ -42,6 +43,30 @@ static void CosSinDegrees(double degrees, real *cosine, real *sine) {
     double radians = reduced * (3.14159265358979323846 / 180);
     *cosine = (real)std::cos(radians);
     *sine = (real)std::sin(radians);
+}
+
+// The step a word makes from its values: v, already read as numbers, and for rotate its axis.
+static bool MakeMeshStep(const std::string &word, const std::string &axis, const real *v,
+                         MeshStep *step, std::string *error) {
+    *step = MeshStep();
+    if (word == "scale") {
+        step->kind = MESH_SCALE;
+        step->factor = v[0];
+        if (!(v[0] > 0)) // 0 would flatten the mesh, < 0 would turn it inside out
+            *error = "scale must be > 0";
+        return v[0] > 0;
+    }
+    if (word == "translate") {
+        step->kind = MESH_TRANSLATE;
+        step->offset = {v[0], v[1], v[2]};
+        return true;
+    }
+    step->kind = MESH_ROTATE;
+    step->axis = axis == "x" ? 0 : axis == "y" ? 1 : axis == "z" ? 2 : -1;
+    CosSinDegrees(v[0], &step->cosine, &step->sine);
+    if (step->axis < 0)
+        *error = "rotate: expected an axis x, y or z, not " + Shown(axis);
+    return step->axis >= 0;
 }
 
 // One word and its values, tokens[*k..]; moves *k past them.
@@ -57,34 +82,16 @@ static bool ParseMeshStep(const std::vector<std::string> &tokens, size_t *k, Mes
         *error = "'" + word + "' needs " + std::to_string(count) + " value(s)";
         return false;
     }
-    *step = MeshStep();
     real v[3];
     size_t firstNumber = word == "rotate" ? 2 : 1; // rotate's first value is its axis
-    for (size_t j = firstNumber; j <= count; j++)
+    for (size_t j = firstNumber; j <= count; j++) {
         if (!ParseReal(tokens[*k + j], &v[j - firstNumber], error)) {
             *error = word + ": " + *error;
             return false;
         }
-    const std::string &axis = tokens[*k + 1];
-    if (word == "scale") {
-        step->kind = MESH_SCALE;
-        step->factor = v[0];
-        if (!(v[0] > 0)) { // 0 would flatten the mesh, < 0 would mirror it and turn it inside out
-            *error = "scale must be > 0";
-            return false;
-        }
-    } else if (word == "rotate") {
-        step->kind = MESH_ROTATE;
-        step->axis = axis == "x" ? 0 : axis == "y" ? 1 : axis == "z" ? 2 : -1;
-        if (step->axis < 0) {
-            *error = "rotate: expected an axis x, y or z, not " + Shown(axis);
-            return false;
-        }
-        CosSinDegrees(v[0], &step->cosine, &step->sine);
-    } else {
-        step->kind = MESH_TRANSLATE;
-        step->offset = {v[0], v[1], v[2]};
     }
+    if (!MakeMeshStep(word, tokens[*k + 1], v, step, error))
+        return false;
     *k += 1 + count;
     return true;
 }
