@@ -73,5 +73,6 @@ void TestRanges();
 void TestFiles();
 void TestMethods();
 void TestMesh();
+void TestMeshRays();
 
 #endif

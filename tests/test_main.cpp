@@ -76,6 +76,7 @@ int main() {
     TestMethods();
     TestSceneFiles();
     TestMesh();
+    TestMeshRays();
     TestProbes();
     TestProgram();
     TestCorpus();
