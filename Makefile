@@ -12,7 +12,7 @@ RT_FLAGS = -std=c++17 -Wall -Wextra -ffp-contract=off -fno-math-errno -pthread -
 PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
 PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 
-CORE = geometry commit kernel handout watertight plane shade camera render image text scene_file probe views scene_default scene_test
+CORE = geometry commit kernel handout watertight plane shade camera render image text scene_file mesh probe views scene_default scene_test
 TESTS = $(basename $(notdir $(wildcard tests/test_*.cpp))) exercise hard_cases hard_cases_offset robust_scenes
 
 # Object lists for one build variant: $(call objs,DIR,NAMES)
@@ -104,6 +104,12 @@ build/student: bench/student.cpp
 
 bench: ray ray_float build/double/rtbench build/float/rtbench
 	@sh bench/bench.sh
+
+# The mesh generator (tools/make_mesh.cpp), for trying the `mesh` statement on large models:
+# `make build/make_mesh`. Not part of `make`: rt does not need it.
+build/make_mesh: tools/make_mesh.cpp
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $<
 
 clean:
 	rm -rf build ray ray_float

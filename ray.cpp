@@ -192,6 +192,7 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
     std::vector<std::string> inputs;
     if (opt->scene != "default" && opt->scene != "test")
         inputs.push_back(opt->scene);
+    inputs.insert(inputs.end(), scene->meshFiles.begin(), scene->meshFiles.end());
     int status;
     if (!CheckOutputPath(output, inputs, &status, &error)) {
         fprintf(stderr, "ray: %s\n", error.c_str());

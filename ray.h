@@ -235,6 +235,8 @@ struct Scene {
     std::vector<Sphere> spheres;
     std::vector<Triangle> triangles;
     std::vector<Light> lights;
+    std::vector<std::string> meshFiles; // the OBJ files `mesh` statements read, as opened: inputs
+                                        // that an output must not replace
     SceneLayout layout; // set by CommitScene; the shape loop uses it only while it is current
 };
 
@@ -767,6 +769,44 @@ bool ReadSceneFile(const char *path, Scene *scene, std::string *error);
 // Reads a scene from text, naming it fileName in errors.
 bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
                     std::string *error);
+
+// ---- mesh.cpp: Wavefront OBJ meshes (the README, "Meshes") -----------------------------------
+
+// One transform word of a `mesh` statement; the words move every vertex in the order written.
+enum MeshStepKind { MESH_SCALE, MESH_ROTATE, MESH_TRANSLATE };
+struct MeshStep {
+    MeshStepKind kind;
+    real factor;       // MESH_SCALE: the uniform factor, > 0
+    int axis;          // MESH_ROTATE: 0, 1, 2 for x, y, z
+    real cosine, sine; // MESH_ROTATE: of the angle (exactly 0 and +-1 for multiples of 90)
+    vec3 offset;       // MESH_TRANSLATE
+};
+
+// Reads the transform words tokens[first..]: `scale S`, `rotate x|y|z DEGREES`, `translate X Y
+// Z`, any number of each. Returns false with *error for an unknown word or a bad value.
+bool ParseMeshTransform(const std::vector<std::string> &tokens, size_t first,
+                        std::vector<MeshStep> *steps, std::string *error);
+
+// The vertex p moved by every step, in order.
+vec3 TransformVertex(const std::vector<MeshStep> &steps, vec3 p);
+
+// Reads a Wavefront OBJ file, open as `file` and called meshName in messages: every face as
+// triangles of `material` (a fan from its first corner), its vertices moved by `steps`,
+// appended to *triangles, at most maxTriangles of them. False with *error = "MESH:LINE: message"
+// for a malformed line, a file without faces, or more triangles than that.
+bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<MeshStep> &steps,
+             size_t maxTriangles, std::vector<Triangle> *triangles, std::string *error);
+
+// A mesh statement's PATH as rt opens it: relative to the folder of the scene file that names it
+// (an absolute path as given).
+std::string MeshPath(const char *sceneFile, const std::string &path);
+
+// The statement `mesh PATH MATERIAL [transform words]` on line `line` of sceneFile, its material
+// already found: reads the file into scene->triangles (at most maxTriangles) and records it in
+// scene->meshFiles. False with *error: "SCENE:LINE: message" for the statement or a file that
+// cannot be opened, "MESH:LINE: message" for the file's own content.
+bool ReadMeshStatement(const std::vector<std::string> &tokens, const char *sceneFile, int line,
+                       int material, size_t maxTriangles, Scene *scene, std::string *error);
 
 // ---- probe.cpp: probes and ray trees (the README, "Probes and debugging")
 // -----------------------------------------

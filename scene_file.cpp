@@ -11,10 +11,13 @@
 #include <cstring>
 #include <sys/stat.h>
 
-// A limit that keeps a hostile or mistaken file from exhausting memory: the brute-force
-// nearest-hit loop is only sensible for scenes far smaller than this anyway. (The file itself is
-// read a line at a time, and a line is at most kMaxLineLength long.)
-static const size_t kMaxObjects = 1000000; // shapes, lights and materials together
+// A limit that keeps a hostile or mistaken file from exhausting memory, high enough for the
+// scanned and exported models a mesh statement brings (millions of triangles). A Triangle is 3
+// vec3 and an int, 80 bytes in double (40 in float): 20 million of them take 1.6 GB, and the
+// vector's last doubling holds its old and new storage at once, up to 4 GB, for a moment: what
+// a machine of 8 GB can still hold. (The files themselves are read a line at a time, and a line
+// is at most kMaxLineLength long.)
+static const size_t kMaxObjects = 20000000; // shapes, lights and materials together
 
 // One statement being read, for its handler and for error messages.
 struct Statement {
@@ -262,6 +265,21 @@ static bool ReadCamera(const Statement *st, Scene *scene, std::string *error) {
     return true;
 }
 
+static size_t ObjectCount(const Scene *scene) {
+    return scene->spheres.size() + scene->triangles.size() + scene->lights.size() +
+           scene->materials.size();
+}
+
+// `mesh PATH MATERIAL [transform words]` (mesh.cpp), with what is left of the object limit.
+static bool ReadMesh(const Statement *st, Scene *scene, std::string *error) {
+    int material;
+    if (st->tokens.size() < 3)
+        return Fail(st, "mesh: expected a file name and a material name", error);
+    return FindMaterial(st, scene, 2, &material, error) &&
+           ReadMeshStatement(st->tokens, st->file, st->line, material,
+                             kMaxObjects - ObjectCount(scene), scene, error);
+}
+
 // One statement: checks it and adds what it says to the scene.
 static bool ReadStatement(const Statement *st, Scene *scene, Declared *declared,
                           std::string *error) {
@@ -271,6 +289,8 @@ static bool ReadStatement(const Statement *st, Scene *scene, Declared *declared,
         return ReadSphere(st, scene, error);
     if (k == "triangle")
         return ReadTriangle(st, scene, error);
+    if (k == "mesh")
+        return ReadMesh(st, scene, error);
     if (k == "material")
         return ReadMaterial(st, scene, error);
     if (k == "light")
@@ -327,9 +347,7 @@ static bool ParseSceneLines(FILE *file, const char *fileName, Scene *scene, std:
             continue;
         if (!ReadStatement(&st, scene, &declared, error))
             return false;
-        size_t objects = scene->spheres.size() + scene->triangles.size() + scene->lights.size() +
-                         scene->materials.size();
-        if (objects > kMaxObjects)
+        if (ObjectCount(scene) > kMaxObjects)
             return Fail(&st, "too many objects (rt's limit is " + std::to_string(kMaxObjects) + ")",
                         error);
     }

@@ -73,5 +73,7 @@ void TestRanges();
 void TestFiles();
 void TestMethods();
 void TestLayout();
+void TestMesh();
+void TestMeshRays();
 
 #endif

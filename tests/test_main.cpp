@@ -76,6 +76,8 @@ int main() {
     TestMethods();
     TestLayout();
     TestSceneFiles();
+    TestMesh();
+    TestMeshRays();
     TestProbes();
     TestProgram();
     TestCorpus();
