@@ -89,6 +89,7 @@ struct Search {
     const Box *boxes; // the triangles' boxes (SceneLayout)
     const Ray *ray;
     const RayShear *shear;
+    SlabRay slab; // for the BVH's boxes (SlabInterval)
     LaneRay lanes;
     int skip;
     real tMin, tMax;
@@ -172,7 +173,7 @@ const int kMaxDepth = 128;
 // The children of node n whose windows meet (tMin, tMax), onto the stack, the nearest on top.
 static RT_INLINE void PushChildren(const BvhNode *n, const Search *s, Pending *stack, int *top) {
     Quad near, far;
-    ChildWindows(n, &s->shear->slab, &near, &far);
+    ChildWindows(n, &s->slab, &near, &far);
     Pending hit[kWidth];
     int count = 0;
     for (int k = 0; k < kWidth; k++) {
@@ -195,6 +196,7 @@ template <int kz>
 static RT_INLINE bool WalkTree(const SceneLayout *layout, Search *s, RayHit *hit) {
     Pending stack[3 * kMaxDepth + kWidth];
     int top = 0;
+    s->slab = MakeSlabRay(s->ray);
     bool found = false;
     PushChildren(&layout->nodes[0], s, stack, &top);
     while (top > 0) {
@@ -226,6 +228,7 @@ bool HitCommittedTriangles(const Scene *scene, int skip, const Ray *ray, const R
                 scene->layout.boxes.data(),
                 ray,
                 shear,
+                {},
                 {Splat(shear->origin.x), Splat(shear->origin.y), Splat(shear->origin.z),
                  Splat(shear->sx), Splat(shear->sy)},
                 skip,

@@ -186,16 +186,48 @@ static void SetUpPlane(const Triangle *tri, const Ray *ray, PlaneProblem *p) {
                  std::fabs(xy) + std::fabs(yx)};
 }
 
-// t moved into the window [near, far] where the line passes the triangle's box (SlabInterval),
-// its error bound growing by the move. A ray within rounding of an edge, nearly parallel to the
-// triangle, can be judged inside while its line meets the plane far beyond the triangle: the
-// hit is then put where the line passes the triangle, not out there. That keeps every hit inside
-// its triangle's window, which is what lets the BVH skip boxes a ray passes outside. A hit on
-// the triangle is already inside (the window is wider than the hit's own error bound), so it
-// never moves.
-static PlaneT IntoWindow(PlaneT plane, real near, real far) {
-    double t = plane.t < near ? near : plane.t > far ? far : plane.t;
-    return {t, plane.error + std::fabs(t - plane.t)};
+// Where the triangle's hit must lie: the window [near, far] in which the ray's line passes its
+// box (SlabInterval). Computed only when a t is not plainly inside it (WellInside).
+struct Window {
+    const Box *box;
+    const Ray *ray;
+    bool known;
+    real near, far;
+};
+
+// True if the point o + t d lies within half the window's widening of the triangle's box: then t
+// is inside the window, whose other half covers the rounding of this test and of SlabInterval
+// (a few u of the same sizes, against 64 u), so moving t into the window would not change it.
+// Almost every hit is decided here, with no division.
+static inline bool WellInside(const PlaneProblem *p, double t, const Window *w) {
+    const Box *box = w->box;
+    double pad = 0.5 * (double)kBoxAllowance * ((double)box->size + MaxComponent(w->ray->origin));
+    const double q[3] = {p->origin.x + t * p->dir.x, p->origin.y + t * p->dir.y,
+                         p->origin.z + t * p->dir.z};
+    for (int i = 0; i < 3; i++)
+        if (!(q[i] >= box->lo[i] - pad && q[i] <= box->hi[i] + pad))
+            return false;
+    return true;
+}
+
+// t moved into the window, its error bound growing by the move; false if the line does not pass
+// the box at all. A ray within rounding of an edge, nearly parallel to the triangle, can be
+// judged inside while its line meets the plane far beyond the triangle: the hit is then put
+// where the line passes the triangle, not out there. That keeps every hit inside its triangle's
+// window, which is what lets the BVH skip boxes a ray passes outside. A hit on the triangle is
+// inside already (the window is wider than the hit's own error bound), and never moves.
+static bool MoveIntoWindow(Window *w, PlaneT *plane) {
+    if (!w->known) {
+        SlabRay slab = MakeSlabRay(w->ray);
+        SlabInterval(w->box->lo, w->box->hi, w->box->size, &slab, &w->near, &w->far);
+        w->known = true;
+    }
+    double t = plane->t < w->near ? w->near : plane->t > w->far ? w->far : plane->t;
+    *plane = {t, plane->error + std::fabs(t - plane->t)};
+    return w->near <= w->far;
+}
+static inline bool IntoWindow(const PlaneProblem *p, Window *w, PlaneT *plane) {
+    return (!w->known && WellInside(p, plane->t, w)) || MoveIntoWindow(w, plane);
 }
 
 // The plane's t for a ray whose line passes inside the triangle, and whether it counts: in
@@ -206,35 +238,39 @@ static PlaneT IntoWindow(PlaneT plane, real near, real far) {
 // just beyond it. Everything else goes to tier 2. Both tiers' t are kept in the triangle's
 // window (IntoWindow); moving t there changes it by at most as much as it changes t's bound, so
 // tier 1's early answers stay right.
-static bool FindPlaneT(const PlaneProblem *p, real near, real far, real tMin, real tMax,
-                       PlaneT *plane) {
+static bool FindPlaneT(const PlaneProblem *p, Window *w, real tMin, real tMax, PlaneT *plane) {
     dvec3 toA = Sub(p->a, p->origin);
     double denominator = DotD(p->n, p->dir);
     double t = DotD(p->n, toA) / denominator;
-    if (!std::isfinite(t) || !(near <= far)) // parallel to the plane, n is 0, or no window
+    if (!std::isfinite(t)) // the ray is parallel to the plane, or n is 0
         return false;
-    *plane = IntoWindow({t, PlainError(p, toA, t, denominator)}, near, far);
+    *plane = {t, PlainError(p, toA, t, denominator)};
+    if (!IntoWindow(p, w, plane))
+        return false;
     if (!(plane->t - plane->error < (double)tMax) || !(plane->t + plane->error > (double)tMin))
         return false;
-    if (!(plane->t - plane->error > 0) || plane->error > kPlainRelativeError * std::fabs(plane->t))
-        *plane = IntoWindow(WidePlaneT(p), near, far);
+    if (!(plane->t - plane->error > 0) ||
+        plane->error > kPlainRelativeError * std::fabs(plane->t)) {
+        *plane = WidePlaneT(p);
+        if (!IntoWindow(p, w, plane))
+            return false;
+    }
     return (real)plane->t > tMin && (real)plane->t < tMax && plane->t > plane->error;
 }
 
 // The hit record for a triangle whose interior the ray passes through (the caller has decided
 // that): t from the plane (FindPlaneT). The point is o + t d, which lies on the plane to within
 // its bound: the rounding of o + t d itself, and t's error times |d|.
-bool RobustPlaneHit(const Triangle *tri, const Box *box, const Ray *ray, const SlabRay *slab,
-                    real tMin, real tMax, RayHit *hit) {
+bool RobustPlaneHit(const Triangle *tri, const Box *box, const Ray *ray, real tMin, real tMax,
+                    RayHit *hit) {
     PlaneProblem p;
     SetUpPlane(tri, ray, &p);
     Box own;
     if (!box)
         own = TriangleBox(tri), box = &own;
-    real near, far;
-    SlabInterval(box->lo, box->hi, box->size, slab, &near, &far);
+    Window window = {box, ray, false, 0, 0};
     PlaneT plane;
-    if (!FindPlaneT(&p, near, far, tMin, tMax, &plane))
+    if (!FindPlaneT(&p, &window, tMin, tMax, &plane))
         return false;
 
     // The unit normal, for shading, and the side the ray came from. A sliver's n may be so small

@@ -538,9 +538,9 @@ bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real
 // The hit record of a triangle whose interior the ray passes through (plane.cpp): t from the
 // triangle's plane, accurate for triangles of any length, and the point o + t d; false if t is
 // outside (tMin, tMax) or within its rounding error of 0 (the ray has just left this plane).
-// `box` is the triangle's TriangleBox, or null to compute it here; `slab` is the ray's.
-bool RobustPlaneHit(const Triangle *tri, const Box *box, const Ray *ray, const SlabRay *slab,
-                    real tMin, real tMax, RayHit *hit);
+// `box` is the triangle's TriangleBox, or null to compute it here.
+bool RobustPlaneHit(const Triangle *tri, const Box *box, const Ray *ray, real tMin, real tMax,
+                    RayHit *hit);
 
 // What a ray must not count as a hit besides t outside its interval: hits at t <= tMin, and the
 // shape it leaves (index -1: none). Set by LeaveSurface and ShadowRay from the self-hit method;
@@ -589,8 +589,7 @@ bool ShadowRay(const RayHit *hit, vec3 lightPosition, const Methods *methods, Ra
 struct RayShear {
     int kz;
     vec3 origin;
-    real sx, sy;  // d[kx]/d[kz] and d[ky]/d[kz]
-    SlabRay slab; // the ray as boxes see it (the windows of plane.cpp, the BVH)
+    real sx, sy; // d[kx]/d[kz] and d[ky]/d[kz]
 };
 void ShearRay(const Ray *ray, RayShear *shear);
 

@@ -49,7 +49,7 @@ template <int kz> static inline vec3 RenameAxes(vec3 v) {
 // changes nothing for a two-sided test, so it is left out.)
 template <int kz> static void ShearRayAxes(const Ray *ray, RayShear *shear) {
     vec3 d = RenameAxes<kz>(ray->dir);
-    *shear = {kz, RenameAxes<kz>(ray->origin), d.x / d.z, d.y / d.z, MakeSlabRay(ray)};
+    *shear = {kz, RenameAxes<kz>(ray->origin), d.x / d.z, d.y / d.z};
 }
 
 void ShearRay(const Ray *ray, RayShear *shear) {
@@ -155,7 +155,7 @@ static bool IntersectSheared(const Triangle *tri, const Box *box, const Ray *ray
     // Inside: where, from the triangle's plane (plane.cpp). The paper's own
     // t = (U Az + V Bz + W Cz) / (U + V + W) loses about u L^2 / w for a triangle of length L and
     // width w, more than the 1.5 units to the floor of a corridor 1e8 long.
-    return RobustPlaneHit(tri, box, ray, &k->slab, tMin, tMax, hit);
+    return RobustPlaneHit(tri, box, ray, tMin, tMax, hit);
 }
 
 bool IntersectWatertight(const Triangle *tri, const Box *box, const Ray *ray, const RayShear *shear,
