@@ -1,6 +1,7 @@
 # rt -- a teaching ray tracer. `make` builds ./ray (double) and ./ray_float (float);
-# `make test` runs every test; `make bench` times the assignment image; `make sanitize` runs the
-# tests under AddressSanitizer and UndefinedBehaviorSanitizer; `make clean` removes every product.
+# `make test` runs every test; `make bench` measures speed and accuracy into build/bench/ (and
+# `make bench-publish` copies a run into docs/bench/); `make sanitize` runs the tests under
+# AddressSanitizer and UndefinedBehaviorSanitizer; `make clean` removes every product.
 
 CXX ?= g++
 CXXFLAGS ?= -O3 -g
@@ -102,7 +103,7 @@ build/student: bench/student.cpp
 	@mkdir -p $(@D)
 	$(CXX) -O2 -std=c++17 -o $@ $< $(PNG_CFLAGS) $(PNG_LIBS)
 
-bench: ray ray_float build/double/rtbench build/float/rtbench
+bench: ray ray_float build/double/rtbench build/float/rtbench build/student build/make_mesh
 	@sh bench/bench.sh
 
 # The mesh generator (tools/make_mesh.cpp), for trying the `mesh` statement on large models:
@@ -111,9 +112,17 @@ build/make_mesh: tools/make_mesh.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $<
 
+# Publishing a bench run is a separate, deliberate step: copies build/bench's tables, plots and
+# heat maps (not its reference renders) into docs/bench/, which the docs link to.
+bench-publish:
+	@test -f build/bench/speed.md || { echo "run make bench first"; exit 2; }
+	@mkdir -p docs/bench
+	cp build/bench/*.md build/bench/*.svg build/bench/*.csv docs/bench/
+	for f in build/bench/*.png; do case $$f in */ref_*) ;; *) cp $$f docs/bench/ ;; esac; done
+
 clean:
 	rm -rf build ray ray_float
 
-.PHONY: all test check sanitize fuzz bench clean
+.PHONY: all test check sanitize fuzz bench bench-publish clean
 
 -include $(wildcard build/*/*.d build/*/tests/*.d build/*/bench/*.d)

@@ -17,6 +17,7 @@
 //                       standard error passed on) and prints its whole-process wall time in ms:
 //                       from fork to the end of waitpid, so the clock includes starting and
 //                       loading the program and nothing of the shell
+//   bench timemem PROGRAM ARGS...   the same, and the program's peak resident memory in MB
 //
 // Every time is the median of at least kRuns renders in this process, and of as many as fit in
 // kMinSeconds (render only, all threads); errors
@@ -32,6 +33,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -250,7 +252,7 @@ static int PngFloor(const char *rgb, const char *png) {
     return WriteImage(png, &image, &error) ? 0 : 3;
 }
 
-static int TimeProcess(char **command) {
+static int TimeProcess(char **command, bool memory) {
     auto start = std::chrono::steady_clock::now();
     pid_t child = fork();
     if (child == 0) {
@@ -260,10 +262,14 @@ static int TimeProcess(char **command) {
         _exit(127);
     }
     int status = 0;
-    if (child < 0 || waitpid(child, &status, 0) != child)
+    struct rusage usage;
+    if (child < 0 || wait4(child, &status, 0, &usage) != child)
         return 3;
     std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - start;
-    printf("%.3f\n", ms.count());
+    if (memory) // the child's peak resident memory, in MB
+        printf("%.3f %.1f\n", ms.count(), usage.ru_maxrss / 1024.0);
+    else
+        printf("%.3f\n", ms.count());
     return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : 1;
 }
 
@@ -281,7 +287,9 @@ int main(int argc, char **argv) {
     if (mode == "report" && argc == 3)
         return ReportMain(argv[2]);
     if (mode == "time" && argc >= 3)
-        return TimeProcess(argv + 2);
+        return TimeProcess(argv + 2, false);
+    if (mode == "timemem" && argc >= 3)
+        return TimeProcess(argv + 2, true);
     if (mode == "robustness" && argc == 2)
         return RobustnessTables();
     if (mode == "methods" && (argc == 2 || argc == 3))

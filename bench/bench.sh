@@ -1,135 +1,156 @@
 #!/bin/sh
-# make bench: the speed of the assignment image, what each effect costs, and what accuracy costs
-# in time. Whole-process times are measured from outside (RUNS runs, median); render times are
-# what `ray --stats` reports; the accuracy tables come from build/*/rtbench (bench/bench.cpp).
+# make bench: the speed of the assignment image, what meshes cost by size, what each effect
+# costs, and what accuracy costs in time. Everything goes to build/bench/ (speed.md and the
+# tables and plots it names); nothing tracked is written. `make bench-publish` copies a run into
+# docs/bench/, a deliberate step.
+#
+# Every time is given as median (min-max) of RUNS runs. Two programs compared are run in turn,
+# so both see the same machine load; a ratio whose ranges overlap is called "within noise".
 set -eu
 RUNS=${RUNS:-11}
+dir=build/bench
+mkdir -p "$dir"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-echo "make bench on $(nproc) cores, $(date -u +%Y-%m-%d)" >&2
+report="$dir/speed.md"
+echo "make bench on $(nproc) cores, $(date -u +%Y-%m-%d): writing $dir/" >&2
 
-median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+# spread FILE: "median (min-max)" of the numbers in FILE, one a line
+spread() { sort -g "$1" | awk '{ v[NR] = $1 } END { m = (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2; printf "%.1f (%.1f-%.1f)", m, v[1], v[NR] }'; }
+median() { sort -g "$1" | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+lowest() { sort -g "$1" | head -1; }
+highest() { sort -g "$1" | tail -1; }
 
-# run_timed COMMAND...: runs COMMAND once and prints its whole-process wall time in ms, measured
-# by rtbench from fork to exit (no shell or `date` process inside the clock)
-run_timed() { build/double/rtbench time "$@"; }
-
-# bench LABEL PROGRAM ARGS...: one row of a table
-bench() {
-    label=$1
-    shift
-    : >"$out/process"
-    : >"$out/render"
-    for k in $(seq "$RUNS"); do
-        run_timed "$@" -o "$out/image.png" --stats 2>"$out/stats" >>"$out/process"
-        sed -n 's/^time: render \([0-9.]*\) s.*/\1/p' "$out/stats" >>"$out/render"
-    done
-    rays=$(sed -n 's/^rays: .*total=\([0-9]*\)$/\1/p' "$out/stats")
-    kinds=$(sed -n 's/^rays: primary=\([0-9]*\) shadow=\([0-9]*\) reflection=\([0-9]*\) refraction=\([0-9]*\).*/\1 \2 \3 \4/p' "$out/stats")
-    effects=$(sed -n 's/^effects: //p' "$out/stats")
-    process_ms=$(median <"$out/process" | awk '{ printf "%.1f", $1 }')
-    render_ms=$(median <"$out/render" | awk '{ printf "%.1f", $1 * 1000 }')
-    mrays=$(awk -v r="$rays" -v t="$render_ms" 'BEGIN { printf "%.1f", r / (t / 1000) / 1e6 }')
-    echo "bench: $label" >&2
-    if [ "${TABLE:-speed}" = effects ]; then
-        set -- $kinds
-        printf '| %-40s | %9s | %8s | %8s | %8s | %8s | %-40s |\n' "$label" "$render_ms" "$1" "$2" "$3" "$4" "$effects"
-    else
-        printf '| %-34s | %8s | %9s | %8s | %7s |\n' "$label" "$process_ms" "$render_ms" "$rays" "$mrays"
-    fi
+# ratio A B: median(A) / median(B), and "within noise" when the two ranges overlap
+ratio() {
+    awk -v a="$(median "$1")" -v b="$(median "$2")" -v alo="$(lowest "$1")" -v ahi="$(highest "$1")" \
+        -v blo="$(lowest "$2")" -v bhi="$(highest "$2")" \
+        'BEGIN { r = a / b; printf "%.2f", r; if (alo <= bhi && blo <= ahi) printf " (ranges overlap: within noise)" }'
 }
 
-echo "## Speed: the assignment image, 512 x 512 (medians of $RUNS runs, $(nproc) cores)"
-echo
-printf '| %-34s | %8s | %9s | %8s | %7s |\n' "run" "process" "render" "rays" "Mrays/s"
-printf '| %-34s | %8s | %9s | %8s | %7s |\n' "" "ms" "ms" "" ""
-echo "|------------------------------------|----------|-----------|----------|---------|"
-bench "./ray (all threads)" ./ray
-bench "./ray --threads 1" ./ray --threads 1
-bench "./ray_float (all threads)" ./ray_float
-bench "./ray --triangle cramer" ./ray --triangle cramer
-bench "./ray --spp 16 (all threads)" ./ray --spp 16
-all16=$mrays
-bench "./ray --spp 16 --threads 1" ./ray --spp 16 --threads 1
-one16=$mrays
-bench "./ray_float --spp 16 --threads 1" ./ray_float --spp 16 --threads 1
-float16=$mrays
+# timed NAME COMMAND...: one whole-process wall time in ms (rtbench: fork to exit), appended to
+# $out/NAME; the command's --stats render time, if it prints one, to $out/NAME.render
+timed() {
+    name=$1
+    shift
+    build/double/rtbench time "$@" 2>"$out/stats" >>"$out/$name"
+    sed -n 's/^time: render \([0-9.]*\) s.*/\1/p' "$out/stats" | awk '{ print $1 * 1000 }' >>"$out/$name.render"
+    sed -n 's/^rays: .*total=\([0-9]*\)$/\1/p' "$out/stats" >"$out/$name.rays"
+}
 
-# The floor: a process that only writes the same PNG with the same settings. The two are run
-# in turn, RUNS times each, so both medians see the same machine load
+make_row() { # NAME LABEL: a table row of the whole-process and render times
+    mrays=$(awk -v r="$(cat "$out/$1.rays")" -v t="$(median "$out/$1.render")" 'BEGIN { printf "%.2f", r / (t / 1000) / 1e6 }')
+    printf '| %s | %s | %s | %s |\n' "$2" "$(spread "$out/$1")" "$(spread "$out/$1.render")" "$mrays"
+}
+
+{
+echo "# make bench, $(date -u +%Y-%m-%d), $(nproc) cores"
+echo
+echo "Times in ms, median (min-max) of $RUNS runs, run in turn with what they are compared with."
+echo
+echo "## The assignment image, 512 x 512"
+echo
+echo "| run | whole process ms | render ms | Mrays/s |"
+echo "|---|---:|---:|---:|"
+} >"$report"
+
+for k in $(seq "$RUNS"); do
+    timed all ./ray -o "$out/a.png" --stats
+    timed one ./ray -o "$out/a.png" --stats --threads 1
+    timed all16 ./ray -o "$out/a.png" --stats --spp 16
+    timed one16 ./ray -o "$out/a.png" --stats --spp 16 --threads 1
+    timed float16 ./ray_float -o "$out/a.png" --stats --spp 16 --threads 1
+    timed student16 build/student "$out/s.png" 16
+done
+{
+make_row all "./ray ($(nproc) threads)"
+make_row one "./ray --threads 1"
+make_row all16 "./ray --spp 16 ($(nproc) threads)"
+make_row one16 "./ray --spp 16 --threads 1"
+make_row float16 "./ray_float --spp 16 --threads 1"
+echo "| build/student 16 (a plain float student solution, -O2) | $(spread "$out/student16") | | |"
+echo
+echo "- rt against the student solution, 16 spp, one thread: $(ratio "$out/one16" "$out/student16") (target: 0.5 or less)"
+echo "- ray_float against ray, 16 spp, one thread: $(ratio "$out/float16" "$out/one16") (target: 1 or less)"
+echo "- one thread against $(nproc), 16 spp (render): $(ratio "$out/one16.render" "$out/all16.render") (target: 1.8 or more)"
+} >>"$report"
+
+# The floor: a process that only writes the same PNG with the same settings, in turn with ./ray
 ./ray -o "$out/reference.png"
 build/double/rtbench raw "$out/reference.png" "$out/reference.rgb"
-: >"$out/floor"
-: >"$out/whole"
 for k in $(seq "$RUNS"); do
-    run_timed build/double/rtbench pngfloor "$out/reference.rgb" "$out/floor.png" >>"$out/floor"
-    run_timed ./ray -o "$out/whole.png" >>"$out/whole"
+    timed floor build/double/rtbench pngfloor "$out/reference.rgb" "$out/floor.png"
+    timed whole ./ray -o "$out/whole.png"
 done
-floor=$(median <"$out/floor" | awk '{ printf "%.1f", $1 }')
-whole=$(median <"$out/whole" | awk '{ printf "%.1f", $1 }')
-ratio=$(awk -v a="$whole" -v b="$floor" 'BEGIN { printf "%.2f", a / b }')
-echo
-echo "Whole process: ./ray $whole ms; a process that only writes the same PNG: $floor ms;" \
-     "ratio $ratio"
+echo "- the whole ./ray process against one that only writes the same PNG: $(ratio "$out/whole" "$out/floor") ($(spread "$out/whole") against $(spread "$out/floor") ms)" >>"$report"
+echo "bench: assignment done" >&2
 
-# The speed targets against this run's figures
-met() { awk -v x="$1" -v op="$2" -v y="$3" 'BEGIN { ok = op == "<=" ? x <= y : x >= y; print ok ? "met" : "not met" }'; }
-threads=$(awk -v a="$all16" -v b="$one16" 'BEGIN { printf "%.2f", a / b }')
-floatratio=$(awk -v a="$float16" -v b="$one16" 'BEGIN { printf "%.2f", a / b }')
+# Meshes by size: the list against the BVH (layout.md, layout.svg), then a million triangles read
+# from an OBJ file and rendered whole, with peak memory
+build/double/rtbench layout "$dir"
+build/make_mesh terrain 708 >"$out/terrain.obj"
+printf 'camera lookat 0 1.2 2.2  0 0 0  0 1 0  50\nlight 2 4 2\nmaterial ground diffuse 0.6 0.8 0.5\nmesh terrain.obj ground\n' >"$out/terrain.scene"
+: >"$out/million"
+for k in 1 2 3; do
+    build/double/rtbench timemem ./ray "$out/terrain.scene" -o "$out/terrain.png" --threads 2 >>"$out/million"
+done
+awk '{ print $1 }' "$out/million" >"$out/million.ms"
+awk '{ print $2 }' "$out/million" >"$out/million.mb"
+{
 echo
-echo "## Speed targets, this run"
+echo "## Meshes: render time against size (256 x 256, one thread)"
 echo
-echo "| target                                             | measured        | status  |"
-echo "|----------------------------------------------------|-----------------|---------|"
-printf '| %-50s | %-15s | %-7s |\n' "whole ./ray process <= 25 ms" "$whole ms" "$(met "$whole" "<=" 25)"
-printf '| %-50s | %-15s | %-7s |\n' "whole process <= 1.5 x the PNG-only floor" "$ratio x" "$(met "$ratio" "<=" 1.5)"
-printf '| %-50s | %-15s | %-7s |\n' "one thread, 16 spp >= 20 Mrays/s" "$one16 Mrays/s" "$(met "$one16" ">=" 20)"
-printf '| %-50s | %-15s | %-7s |\n' "$(nproc) threads >= 1.8 x one thread (16 spp)" "$threads x" "$(met "$threads" ">=" 1.8)"
-printf '| %-50s | %-15s | %-7s |\n' "ray_float >= ray (one thread, 16 spp)" "$floatratio x" "$(met "$floatratio" ">=" 1)"
+cat "$dir/layout.md"
+echo
+echo "![render time against triangles](layout.svg)"
+echo
+echo "- 1,002,528 triangles (make_mesh terrain 708), read from OBJ and rendered at 512 x 512 on 2 threads,"
+echo "  whole process: $(spread "$out/million.ms") ms (target: under 3,000), peak memory $(spread "$out/million.mb") MB (target: under 1,024)"
+} >>"$report"
+echo "bench: meshes done" >&2
 
-# What each effect costs: the same scene with one effect's keyword taken out. The scene files are
-# rewritten by sed into a temporary directory; nothing else changes.
+# What each effect costs: the same scene with one effect's keyword taken out
 cp scenes/test.scene scenes/effects.scene "$out/"
 sed 's/ mirror [0-9][0-9.]*//' scenes/test.scene >"$out/test_no_mirrors.scene"
 sed '/^light /d' scenes/test.scene >"$out/test_no_lights.scene"
 sed 's/glass 1.5/diffuse 0.9 0.9 0.9/; s/glass 1.33/diffuse 0.6 0.8 0.9/' scenes/effects.scene >"$out/effects_no_glass.scene"
 sed 's/ specular [0-9][0-9.]* [0-9][0-9.]*//' scenes/effects.scene >"$out/effects_no_specular.scene"
 sed 's/ mirror [0-9][0-9.]*//' scenes/effects.scene >"$out/effects_no_mirrors.scene"
-RUNS=5
+{
 echo
-echo "## What each effect costs: render time (median of $RUNS, $(nproc) threads) and rays by kind"
+echo "## What each effect costs ($(nproc) threads)"
 echo
-TABLE=effects
-printf '| %-40s | %9s | %8s | %8s | %8s | %8s | %-40s |\n' "scene" "render ms" "primary" "shadow" "reflect" "refract" "effects"
-echo "|------------------------------------------|-----------|----------|----------|----------|----------|------------------------------------------|"
-bench "test scene" ./ray "$out/test.scene"
-bench "test scene, mirror keywords removed" ./ray "$out/test_no_mirrors.scene"
-bench "test scene, lights removed" ./ray "$out/test_no_lights.scene"
-bench "test scene, --spp 4" ./ray "$out/test.scene" --spp 4
-bench "effects gallery" ./ray "$out/effects.scene"
-bench "effects gallery, glass made matte" ./ray "$out/effects_no_glass.scene"
-bench "effects gallery, specular removed" ./ray "$out/effects_no_specular.scene"
-bench "effects gallery, mirror keywords removed" ./ray "$out/effects_no_mirrors.scene"
+echo "| scene | render ms | primary | shadow | reflection | refraction | effects |"
+echo "|---|---:|---:|---:|---:|---:|---|"
+} >>"$report"
+for scene in test test_no_mirrors test_no_lights effects effects_no_glass effects_no_specular effects_no_mirrors; do
+    for k in 1 2 3 4 5; do
+        timed "e_$scene" ./ray "$out/$scene.scene" -o "$out/e.png" --stats
+    done
+    kinds=$(sed -n 's/^rays: primary=\([0-9]*\) shadow=\([0-9]*\) reflection=\([0-9]*\) refraction=\([0-9]*\).*/\1 | \2 | \3 | \4/p' "$out/stats")
+    effects=$(sed -n 's/^effects: //p' "$out/stats")
+    echo "| $scene | $(spread "$out/e_$scene.render") | $kinds | $effects |" >>"$report"
+done
+echo "bench: effects done" >&2
 
-# Where the robustness claims hold (docs/robustness.md publishes a copy of these tables)
-mkdir -p build/bench
+# Where the robustness claims hold, and what each numerical method costs and buys
 {
     build/double/rtbench robustness
     build/float/rtbench robustness
-} >build/bench/robustness.md
-echo
-echo "## Robustness: build/bench/robustness.md"
+} >"$dir/robustness.md"
 {
-    build/double/rtbench methods build/bench
-    build/float/rtbench methods build/bench
-} >build/bench/methods.md
-echo "## What each method costs and buys: build/bench/methods.md"
+    build/double/rtbench methods "$dir"
+    build/float/rtbench methods "$dir"
+} >"$dir/methods.md"
+echo "bench: robustness and methods done" >&2
 
-# What accuracy costs in time: bench/results.csv, results.md, accuracy_vs_time.svg, heat maps
-echo "scene,knob,setting,spp,seconds,rays,rmse,psnr,off1,off8" >"$out/results.csv"
-build/double/rtbench rows bench >>"$out/results.csv"
-build/float/rtbench rows bench >>"$out/results.csv"
-cp "$out/results.csv" bench/results.csv
-build/double/rtbench report bench
+# What accuracy costs in time: results.csv, results.md, accuracy_vs_time.svg, heat maps
+echo "scene,knob,setting,spp,seconds,rays,rmse,psnr,off1,off8" >"$dir/results.csv"
+build/double/rtbench rows "$dir" >>"$dir/results.csv"
+build/float/rtbench rows "$dir" >>"$dir/results.csv"
+build/double/rtbench report "$dir"
+{
 echo
-cat bench/results.md
+echo "## More: robustness.md, methods.md, results.md (accuracy against time), in this folder"
+} >>"$report"
+cat "$report"
