@@ -118,7 +118,7 @@ bench-publish:
 	@test -f build/bench/speed.md || { echo "run make bench first"; exit 2; }
 	@mkdir -p docs/bench
 	cp build/bench/*.md build/bench/*.svg build/bench/*.csv docs/bench/
-	for f in build/bench/*.png; do case $$f in */ref_*) ;; *) cp $$f docs/bench/ ;; esac; done
+	for f in build/bench/*.png; do case $$f in */ref_*|*/base_*) ;; *) cp $$f docs/bench/ ;; esac; done
 
 clean:
 	rm -rf build ray ray_float

@@ -1,5 +1,5 @@
-// bench/report.cpp -- turns bench/results.csv into results.md (tables and the conclusions, in
-// measured numbers) and accuracy_vs_time.svg (error against time; SVG written by hand).
+// bench/report.cpp -- turns a bench run's results.csv into results.md (tables and the conclusions,
+// in measured numbers) and accuracy_vs_time.svg (error against time; SVG written by hand).
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
