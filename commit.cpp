@@ -278,5 +278,6 @@ void CommitScene(Scene *scene, LayoutChoice choice) {
         layout.boxes[i] = TriangleBox(&triangles[i]);
     layout.triangleCount = triangles.size();
     layout.committed = true;
+    layout.wide = KernelCanBeWide();
     scene->layout = std::move(layout);
 }

@@ -49,7 +49,8 @@ static void PrintLayout(const Scene *scene, double commitSeconds) {
         fprintf(stderr, "one list");
     else
         fprintf(stderr, "a BVH of %zu nodes of %d", layout->nodes.size(), kWidth);
-    fprintf(stderr, " (built in %.3g ms), kernel %s\n", commitSeconds * 1e3, KernelInstructions());
+    fprintf(stderr, " (built in %.3g ms), %s\n", commitSeconds * 1e3,
+            layout->wide ? "blocks tested in AVX2 vectors" : "blocks tested lane by lane");
 }
 
 static void PrintStats(const RayStats *s, const RenderSettings *settings, double renderSeconds,

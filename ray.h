@@ -213,11 +213,13 @@ struct SceneLayout {
     std::vector<Box> boxes;            // each triangle's TriangleBox, by its place in the scene
     size_t triangleCount = 0;          // the number of triangles it was built from
     bool committed = false;
+    bool wide = false; // the kernel tests blocks in AVX2 vectors (else lane by lane: kernel.cpp)
     // A copy of a Scene may then be edited, so it starts uncommitted.
     SceneLayout() = default;
     SceneLayout(const SceneLayout &) {}
     SceneLayout &operator=(const SceneLayout &) {
         blocks.clear(), nodes.clear(), boxes.clear(), triangleCount = 0, committed = false;
+        wide = false;
         return *this;
     }
     SceneLayout(SceneLayout &&) = default;
@@ -618,8 +620,8 @@ inline bool LayoutIsCurrent(const Scene *scene) {
 bool HitCommittedTriangles(const Scene *scene, int skip, const Ray *ray, const RayShear *shear,
                            real tMin, real tMax, bool anyHit, RayHit *hit);
 
-// The instruction set the kernel runs on this machine ("avx2", "sse2"), for --stats.
-const char *KernelInstructions();
+// True if this processor runs the kernel's AVX2 copy (CommitScene sets SceneLayout::wide).
+bool KernelCanBeWide();
 
 // ---- shade.cpp: lighting and the ray chain ---------------------------------------------------
 

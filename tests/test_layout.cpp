@@ -25,27 +25,31 @@ static bool SameHit(const RayHit &a, const RayHit &b) {
            a.index == b.index && SameBits(a.pointError, b.pointError);
 }
 
-// The three ways to ask: as written, one list of blocks, a BVH.
+// The ways to ask: as written, one list of blocks, a BVH, and the BVH again with the kernel's
+// other copy (lane by lane where this processor has AVX2, else the same again).
+const int kWays = 4;
 struct Layouts {
-    Scene plain, list, tree;
+    Scene plain, list, tree, other;
 };
 static void MakeLayouts(const Scene &scene, Layouts *l) {
-    l->plain = scene, l->list = scene, l->tree = scene; // (a copy starts uncommitted)
+    l->plain = scene, l->list = scene, l->tree = scene, l->other = scene; // (copies: uncommitted)
     CommitScene(&l->list, LAYOUT_LIST);
     CommitScene(&l->tree, LAYOUT_BVH);
+    CommitScene(&l->other, LAYOUT_BVH);
+    l->other.layout.wide = false;
 }
 
 // One ray asked all three ways, nearest hit and any hit, from the eye and leaving the shape it
 // hit (the second handout's skip): false at the first answer that differs.
 static bool SameAnswers(const Layouts *l, const Ray *ray, real tMin, real tMax) {
-    const Scene *scenes[3] = {&l->plain, &l->list, &l->tree};
-    RayHit hits[3];
-    bool found[3], any[3];
-    for (int k = 0; k < 3; k++) {
+    const Scene *scenes[kWays] = {&l->plain, &l->list, &l->tree, &l->other};
+    RayHit hits[kWays];
+    bool found[kWays], any[kWays];
+    for (int k = 0; k < kWays; k++) {
         found[k] = FindNearestHit(scenes[k], kRobustMethods, ray, tMin, tMax, &hits[k]);
         any[k] = AnyHit(scenes[k], kRobustMethods, ray, tMin, tMax);
     }
-    for (int k = 1; k < 3; k++)
+    for (int k = 1; k < kWays; k++)
         if (found[k] != found[0] || any[k] != any[0] || (found[0] && !SameHit(hits[k], hits[0])))
             return false;
     if (!found[0] || hits[0].shape != SHAPE_TRIANGLE)
@@ -55,11 +59,11 @@ static bool SameAnswers(const Layouts *l, const Ray *ray, real tMin, real tMax) 
     Ray next;
     RayStart start;
     LeaveSurface(&hits[0], Reflect(ray->dir, hits[0].normal), &skip, &next, &start);
-    RayHit again[3];
-    bool foundAgain[3];
-    for (int k = 0; k < 3; k++)
+    RayHit again[kWays];
+    bool foundAgain[kWays];
+    for (int k = 0; k < kWays; k++)
         foundAgain[k] = FindNearestHitFrom(scenes[k], skip, &next, &start, kInfinity, &again[k]);
-    for (int k = 1; k < 3; k++)
+    for (int k = 1; k < kWays; k++)
         if (foundAgain[k] != foundAgain[0] || (foundAgain[0] && !SameHit(again[k], again[0])))
             return false;
     return true;
@@ -193,13 +197,15 @@ static bool CommittedTriangle(const Triangle *tri, const Ray *ray, real tMin, re
     scene.triangles = {*tri};
     Layouts l;
     MakeLayouts(scene, &l);
-    RayHit reference, list, tree;
+    RayHit reference, list, tree, other;
     bool found = IntersectTriangle(tri, ray, tMin, tMax, &reference);
     bool inList = FindNearestHit(&l.list, kRobustMethods, ray, tMin, tMax, &list);
     bool inTree = FindNearestHit(&l.tree, kRobustMethods, ray, tMin, tMax, &tree);
+    bool inOther = FindNearestHit(&l.other, kRobustMethods, ray, tMin, tMax, &other);
     reference.index = 0; // (the shape loop sets the index; IntersectTriangle does not)
-    if (inList != found || inTree != found ||
-        (found && (!SameHit(list, reference) || !SameHit(tree, reference))))
+    if (inList != found || inTree != found || inOther != found ||
+        (found &&
+         (!SameHit(list, reference) || !SameHit(tree, reference) || !SameHit(other, reference))))
         sDifferences++;
     *hit = tree;
     return inTree;
@@ -215,8 +221,8 @@ static void TestHardCasesCommitted() {
     CHECK(sDifferences == 0, "and each answer is the reference function's, bit for bit");
 }
 
-// Images: the test scene and a mesh scene rendered plain, as a list and with a BVH, with
-// jittered samples and every effect: the same bytes.
+// Images: the test scene and a mesh scene rendered every way (MakeLayouts), with jittered
+// samples and every effect: the same bytes.
 static void TestSameImages() {
     Scene scenes[2];
     BuildTestScene(&scenes[0]);
@@ -230,13 +236,14 @@ static void TestSameImages() {
         RenderSettings settings = TestSettings(&scene);
         settings.samplesPerPixel = 4;
         settings.sampling = SAMPLES_JITTER;
-        Image images[3];
+        Image images[kWays];
         RayStats stats;
-        const Scene *three[3] = {&l.plain, &l.list, &l.tree};
-        for (int k = 0; k < 3; k++)
-            Render(three[k], &settings, &images[k], &stats);
-        CHECK(images[1].pixels == images[0].pixels && images[2].pixels == images[0].pixels,
-              "the same image bytes as written, as a list and with a BVH");
+        const Scene *ways[kWays] = {&l.plain, &l.list, &l.tree, &l.other};
+        for (int k = 0; k < kWays; k++)
+            Render(ways[k], &settings, &images[k], &stats);
+        CHECK(images[1].pixels == images[0].pixels && images[2].pixels == images[0].pixels &&
+                  images[3].pixels == images[0].pixels,
+              "the same image bytes as written, as a list and with a BVH (both kernels)");
     }
 }
 
