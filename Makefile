@@ -13,7 +13,7 @@ RT_FLAGS = -std=c++17 -Wall -Wextra -ffp-contract=off -fno-math-errno -pthread -
 PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
 PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 
-CORE = geometry commit kernel handout watertight plane shade camera render image text scene_file mesh probe views scene_default scene_test
+CORE = geometry commit kernel handout watertight plane shade path camera render image text scene_file mesh probe views scene_default scene_test
 TESTS = $(basename $(notdir $(wildcard tests/test_*.cpp))) exercise hard_cases hard_cases_offset robust_scenes
 
 # Object lists for one build variant: $(call objs,DIR,NAMES)

@@ -41,6 +41,15 @@ const char *kUsage =
     "  --fresnel exact|schlick  how much glass reflects\n"
     "  --layout auto|list|bvh   how the triangles are searched: a BVH from 32 triangles on\n"
     "                           (auto, default), one list, or a BVH; the answers are the same\n"
+    "  --scatter cosine|uniform `shading path`: diffuse directions drawn by cos(theta) (default)\n"
+    "                           or uniformly over the hemisphere\n"
+    "  --lights mis|nee|none    `shading path`: how emitting shapes are found: sampled and\n"
+    "                           combined with scattered rays by MIS (default), sampled only, or\n"
+    "                           only hit by chance (point lights are always sampled)\n"
+    "  --roulette on|off        `shading path`: Russian roulette ends dim paths (default, "
+    "unbiased)\n"
+    "                           or only --depth does (biased)\n"
+    "  --seed N                 `shading path`: another seed draws other random numbers (0)\n"
     "  --view normal|depth|id|cost|shadow\n"
     "                           draw a debug view instead of the lit image (default output:\n"
     "                           the image's name with _VIEW added, e.g. reference_normal.png)\n"
@@ -169,6 +178,9 @@ static const ChoiceOption kChoices[] = {
     {"--aa", {"grid", "jitter", "adaptive"}, &Options::sampling},
     {"--methods", {"robust", "handout"}, &Options::methodSet},
     {"--layout", {"auto", "list", "bvh"}, &Options::layout},
+    {"--scatter", {"cosine", "uniform"}, &Options::scatter},
+    {"--lights", {"mis", "nee", "none"}, &Options::lights},
+    {"--roulette", {"on", "off"}, &Options::roulette},
     {"--sphere", {"stable", "textbook"}, &Options::sphere},
     {"--triangle", {"watertight", "cramer", "plane"}, &Options::triangle},
     {"--camera-ray", {"eye", "slides"}, &Options::cameraRay},
@@ -187,6 +199,8 @@ static bool ParseOption(const std::string &a, char **v, Options *opt, std::strin
         return ParseInt(v[0], 1, 65536, "--spp", &opt->spp, error);
     else if (a == "--depth")
         return ParseInt(v[0], 1, 1000, "--depth", &opt->depth, error);
+    else if (a == "--seed")
+        return ParseInt(v[0], 0, 1000000000, "--seed", &opt->seed, error);
     else if (a == "--threads")
         return ParseInt(v[0], 1, 1024, "--threads", &opt->threads, error);
     else if (a == "--self-hit")

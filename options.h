@@ -11,6 +11,10 @@ struct Options {
     int sampling = 0;  // --aa: grid, jitter, adaptive, in SampleMethod's order
     int methodSet = 0; // --methods: robust, handout
     int layout = 0;    // --layout: auto, list, bvh, in LayoutChoice's order
+    int scatter = 0, lights = 0, roulette = 0; // --scatter, --lights, --roulette (shading
+                                               // path): in ScatterMethod's, LightMethod's
+                                               // order; on, off
+    int seed = 0;                              // --seed (shading path)
     int sphere = -1, triangle = -1, selfHit = -1, cameraRay = -1, fresnel = -1; // -1: from the set
     real epsilon = 0; // --self-hit epsilon=E
     bool stats = false, help = false, version = false;

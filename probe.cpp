@@ -100,7 +100,7 @@ std::string ProbeRayJson(const Scene *scene, const RenderSettings *settings, con
 
 // One node of the tree and, nested, every node whose parent it is.
 static std::string NodeJson(const Scene *scene, const std::vector<RayNode> &tree, int index) {
-    static const char *kKinds[] = {"primary", "shadow", "reflection", "refraction"};
+    static const char *kKinds[] = {"primary", "shadow", "reflection", "refraction", "diffuse"};
     const RayNode &n = tree[index];
     std::string children;
     for (int k = index + 1; k < (int)tree.size(); k++)
@@ -114,7 +114,7 @@ static std::string NodeJson(const Scene *scene, const std::vector<RayNode> &tree
 
 std::string PixelTreeJson(const Scene *scene, const RenderSettings *settings, int x, int y) {
     std::vector<RayNode> tree;
-    TraceLog log = {RayStats{0, 0, 0, 0, 0}, &tree, -1, 0};
+    TraceLog log = {RayStats{}, &tree, -1, 0};
     Ray ray;
     GetCameraRay(&settings->camera, settings->width, settings->height, SamplePosition(x, y, 0, 1),
                  &ray);

@@ -55,20 +55,23 @@ static void PrintLayout(const Scene *scene, double commitSeconds) {
 
 static void PrintStats(const RayStats *s, const RenderSettings *settings, double renderSeconds,
                        double totalSeconds) {
-    uint64_t total = s->primary + s->shadow + s->reflection + s->refraction;
+    uint64_t total = s->primary + s->shadow + s->reflection + s->refraction + s->diffuse;
     fprintf(stderr, "image: %dx%d, %d spp, depth %d, %d threads\n", settings->width,
             settings->height, settings->samplesPerPixel, settings->depth, settings->threads);
     fprintf(stderr, "time: render %.4f s, whole process %.4f s\n", renderSeconds, totalSeconds);
-    fprintf(stderr, "rays: primary=%llu shadow=%llu reflection=%llu refraction=%llu total=%llu\n",
+    fprintf(stderr,
+            "rays: primary=%llu shadow=%llu reflection=%llu refraction=%llu diffuse=%llu "
+            "total=%llu\n",
             (unsigned long long)s->primary, (unsigned long long)s->shadow,
             (unsigned long long)s->reflection, (unsigned long long)s->refraction,
-            (unsigned long long)total);
-    fprintf(stderr, "speed: %.2f Mrays/s\n", total / renderSeconds / 1e6);
+            (unsigned long long)s->diffuse, (unsigned long long)total);
+    fprintf(stderr, "speed: %.3g Mrays/s\n", total / renderSeconds / 1e6);
     std::string effects;
-    const char *names[] = {" shadows", " reflection", " refraction", " specular", " antialiasing"};
-    bool used[] = {s->shadow > 0, s->reflection > 0, s->refraction > 0, s->specularTerms > 0,
-                   settings->samplesPerPixel > 1};
-    for (int k = 0; k < 5; k++)
+    const char *names[] = {" shadows",  " reflection", " refraction",
+                           " specular", " indirect",   " antialiasing"};
+    bool used[] = {s->shadow > 0,        s->reflection > 0, s->refraction > 0,
+                   s->specularTerms > 0, s->diffuse > 0,    settings->samplesPerPixel > 1};
+    for (int k = 0; k < 6; k++)
         if (used[k])
             effects += names[k];
     fprintf(stderr, "effects: %s\n", effects.empty() ? "none" : effects.c_str() + 1);
@@ -164,6 +167,8 @@ static RenderSettings ChosenSettings(const Options *opt, const Scene *scene) {
     unsigned hardware = std::thread::hardware_concurrency();
     settings.threads = opt->threads ? opt->threads : (hardware ? (int)hardware : 1);
     settings.methods = ChosenMethods(opt);
+    settings.path = {(ScatterMethod)opt->scatter, (LightMethod)opt->lights, opt->roulette == 1,
+                     opt->seed};
     settings.showProgress = true;
     PlanRender(scene, &settings);
     return settings;
@@ -200,7 +205,7 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
         return status;
     }
     Image image;
-    RayStats stats = {0, 0, 0, 0, 0};
+    RayStats stats = {};
     auto renderStart = std::chrono::steady_clock::now();
     if (opt->view)
         RenderView(scene, settings, opt->viewKind, &image);

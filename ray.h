@@ -160,6 +160,7 @@ struct Material {
     real shininess; // n, the Phong exponent
     real mirror;    // fraction of the reflected ray's colour mixed in, 0..1
     real ior;       // index of refraction of glass; 0 for an opaque material
+    color emit;     // radiance the surface gives off, on both sides (`shading path`; 0: none)
 };
 
 struct Light {
@@ -170,7 +171,9 @@ struct Light {
 // The two lighting rules of the README's scene format.
 enum ShadingModel {
     SHADING_FLOOR, // the assignment handout's kd * max(ambient, sum of I (N.L))
-    SHADING_PHONG  // the second handout's ka Ia + sum of I (kd (N.L) + ks max(0, R.V)^n)
+    SHADING_PHONG, // the second handout's ka Ia + sum of I (kd (N.L) + ks max(0, R.V)^n)
+    SHADING_PATH   // the learning journal's diffuse scattering: light after any number of
+                   // bounces, estimated by Monte Carlo paths (path.cpp)
 };
 
 // Everything a render needs to know about the world. Shapes name materials by index.
@@ -287,14 +290,23 @@ const Methods kHandoutMethods = {SPHERE_TEXTBOOK, TRIANGLE_CRAMER,   SELF_HIT_EP
 
 // ---- render plumbing: effects, settings, chains and trees of rays (shade.cpp, render.cpp) --
 
+// A shape whose material emits (`emit`), by kind and place in its array.
+struct Emitter {
+    ShapeKind shape;
+    int index;
+};
+
 // Which effects a render can need, decided once per render from the scene and the settings
 // (PlanEffects); the shading code skips whole paths for the absent ones.
 struct Effects {
-    bool shadows;      // lights, and shapes that could stand in their way
-    bool reflection;   // a material with mirror > 0 or glass, and depth > 1
-    bool refraction;   // a glass material, and depth > 1
-    bool specular;     // Phong shading, lights, and a material with ks > 0
-    bool antialiasing; // more than one sample per pixel
+    bool shadows;                  // lights, and shapes that could stand in their way
+    bool reflection;               // a material with mirror > 0 or glass, and depth > 1
+    bool refraction;               // a glass material, and depth > 1
+    bool specular;                 // Phong shading, lights, and a material with ks > 0
+    bool antialiasing;             // more than one sample per pixel
+    bool indirect;                 // `shading path`: light scattered by diffuse surfaces
+    std::vector<Emitter> emitters; // `shading path`: the shapes that emit, for next-event
+                                   // estimation (path.cpp)
 };
 
 // Where a pixel's samples go (--aa).
@@ -310,6 +322,28 @@ enum SampleMethod {
 // the assignment and test scenes, because the shapes decide at edges; 1/16 casts the fewest rays.
 const real kAdaptiveContrast = real(1) / 16;
 
+// How `shading path` estimates the light a diffuse surface scatters (path.cpp), each choice
+// selectable so that `make bench` can compare them.
+enum ScatterMethod {
+    SCATTER_COSINE, // directions drawn with density cos(theta) / pi (Ray Tracing in One Weekend's
+                    // normal + random_unit_vector): the default
+    SCATTER_UNIFORM // uniform over the hemisphere, density 1 / (2 pi) (the journal's
+                    // random_in_hemisphere)
+};
+enum LightMethod {
+    LIGHTS_MIS, // next-event estimation to point lights and emitting shapes, combined with
+                // scattered rays that hit emitters by multiple importance sampling (the default)
+    LIGHTS_NEE, // next-event estimation only: a scattered ray that hits an emitter adds nothing
+    LIGHTS_NONE // scattered rays only: light arrives when a path happens to hit an emitter
+};
+// The defaults are all zero, so `{}` asks for them.
+struct PathMethods {
+    ScatterMethod scatter;
+    LightMethod lights;
+    bool noRoulette; // only `depth` ends paths (biased); else Russian roulette does (unbiased)
+    int seed;        // mixed into every random number: another seed, another (equally good) noise
+};
+
 // How one render is done; filled from the scene and the command line.
 struct RenderSettings {
     int width, height;   // image size in pixels
@@ -321,9 +355,10 @@ struct RenderSettings {
     bool showProgress; // redraw a progress line on standard error
     Effects effects;   // filled by PlanRender
     Camera camera;     // the scene's camera for this image size, filled by PlanRender
+    PathMethods path;  // how `shading path` samples (ignored by the other shadings)
 };
 
-enum RayKind { RAY_PRIMARY, RAY_SHADOW, RAY_REFLECTION, RAY_REFRACTION };
+enum RayKind { RAY_PRIMARY, RAY_SHADOW, RAY_REFLECTION, RAY_REFRACTION, RAY_DIFFUSE };
 
 // Where a ray stands in its chain: its number (1 for the primary ray; no more than `depth`) and
 // its weight, the share of the pixel's colour it carries (1 for the primary ray, times the
@@ -344,6 +379,7 @@ const real kMinRayWeight = real(1) / 4096;
 struct RayStats {
     uint64_t primary, shadow, reflection, refraction;
     uint64_t specularTerms;
+    uint64_t diffuse; // rays scattered by diffuse surfaces (`shading path`)
 };
 
 // One ray of a traced ray tree (`--pixel`): what it was, what it hit, the colour it brought
@@ -605,6 +641,17 @@ bool IntersectWatertight(const Triangle *tri, const Box *box, const Ray *ray, co
 bool HitWatertightTriangles(const Triangle *triangles, int n, int skip, const Ray *ray,
                             const RayShear *shear, real tMin, real tMax, bool anyHit, RayHit *hit);
 
+// ---- path.cpp: `shading path` -----------------------------------------------------------------
+
+// The light along `primary`, the camera ray of sample s of pixel (i, j), after any number of
+// bounces: one Monte Carlo path (see path.cpp). Counts its rays in log->stats, and records them
+// in log->tree if that is set.
+color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, int i,
+                int j, int s, TraceLog *log);
+
+// The surface area of an emitting shape.
+real EmitterArea(const Scene *scene, const Emitter *e);
+
 // ---- commit.cpp and kernel.cpp: the committed scene ------------------------------------------
 
 // Builds scene->layout from the scene's triangles (see SceneLayout): once per render, after the
@@ -633,6 +680,11 @@ void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *ef
 // records them in log->tree if that is set).
 color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
                const RayStart *start, RayChain chain, TraceLog *log);
+
+// Counts a ray of this kind; adds a node for it to log->tree, if a tree is being recorded, with
+// log->current as its parent (returns the node's index, or -1).
+void CountRay(RayKind kind, RayStats *stats);
+int RecordRay(RayKind kind, const Ray *ray, TraceLog *log);
 
 // Snell's law for unit d against the unit normal n (d.n <= 0), eta = n1 / n2. Writes the unit
 // refracted direction to *t and returns true, or returns false for total internal reflection.
@@ -690,6 +742,9 @@ vec2 SamplePosition(int i, int j, int s, int n);
 
 // Colour channel to 8 bits: round(clamp(c, 0, 1) * 255), no gamma.
 uint8_t ToByte(real c);
+
+// The sRGB curve: linear light in [0, 1] to its 8-bit-ready encoding (`shading path` pixels).
+real SrgbEncode(real linear);
 
 // ---- image.cpp: image files and comparing images ------------------------------------------------
 

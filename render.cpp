@@ -23,12 +23,21 @@ uint8_t ToByte(real c) {
     return (uint8_t)std::lround(c * 255);
 }
 
+// The sRGB transfer curve (IEC 61966-2-1): linear light in [0, 1] to the encoded value a display
+// expects, linear near black and a 1/2.4 power above.
+real SrgbEncode(real linear) {
+    if (!(linear > real(0.0031308)))
+        return real(12.92) * std::max(real(0), linear);
+    return real(1.055) * std::pow(std::min(real(1), linear), real(1) / real(2.4)) - real(0.055);
+}
+
 static void AddStats(const RayStats *from, RayStats *to) {
     to->primary += from->primary;
     to->shadow += from->shadow;
     to->reflection += from->reflection;
     to->refraction += from->refraction;
     to->specularTerms += from->specularTerms;
+    to->diffuse += from->diffuse;
 }
 
 // Cell s of n inside the unit pixel, on a regular grid that holds exactly n cells: `rows` =
@@ -78,10 +87,14 @@ static vec2 JitterPosition(int i, int j, int s, int n, int stream) {
     return {i + p.x, j + p.y};
 }
 
-static color TraceSample(const Scene *scene, const RenderSettings *settings, vec2 position,
-                         TraceLog *log) {
+// One sample of pixel (i, j): the camera ray through `position`, traced as the scene's shading
+// says. `s` numbers the samples of the pixel (a path's random numbers depend on it).
+static color TraceSample(const Scene *scene, const RenderSettings *settings, vec2 position, int i,
+                         int j, int s, TraceLog *log) {
     Ray ray;
     GetCameraRay(&settings->camera, settings->width, settings->height, position, &ray);
+    if (scene->shading == SHADING_PATH)
+        return TracePath(scene, settings, &ray, i, j, s, log);
     return TraceRay(scene, settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, log);
 }
 
@@ -118,7 +131,7 @@ static color AdaptivePixel(const Scene *scene, const RenderSettings *settings, i
     for (int s = 0; s < 5; s++) {
         vec2 p = firstPositions[s];
         log->surfaces = 0;
-        first[s] = TraceSample(scene, settings, {i + p.x, j + p.y}, log);
+        first[s] = TraceSample(scene, settings, {i + p.x, j + p.y}, i, j, s, log);
         centre = s == 0 ? log->surfaces : centre;
         sameSurfaces = sameSurfaces && log->surfaces == centre;
         if (s > 0)
@@ -128,13 +141,14 @@ static color AdaptivePixel(const Scene *scene, const RenderSettings *settings, i
         return real(0.5) * first[0] + real(0.125) * corners;
     color sum = first[0];
     for (int s = 0; s < n - 1; s++)
-        sum = sum + TraceSample(scene, settings, JitterPosition(i, j, s, n - 1, 1), log);
+        sum =
+            sum + TraceSample(scene, settings, JitterPosition(i, j, s, n - 1, 1), i, j, 5 + s, log);
     return (real(1) / n) * sum;
 }
 
 color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
                   RayStats *stats) {
-    TraceLog log = {RayStats{0, 0, 0, 0, 0}, nullptr, -1, 0};
+    TraceLog log = {RayStats{}, nullptr, -1, 0};
     int n = settings->samplesPerPixel;
     color result = {0, 0, 0};
     if (settings->sampling == SAMPLES_ADAPTIVE && n > 5) {
@@ -143,7 +157,7 @@ color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int
         bool jitter = settings->sampling != SAMPLES_GRID && n > 1;
         for (int s = 0; s < n; s++) {
             vec2 p = jitter ? JitterPosition(i, j, s, n, 0) : SamplePosition(i, j, s, n);
-            result = result + TraceSample(scene, settings, p, &log);
+            result = result + TraceSample(scene, settings, p, i, j, s, &log);
         }
         result = (real(1) / n) * result;
     }
@@ -156,6 +170,8 @@ static void RenderRow(const Scene *scene, const RenderSettings *settings, int j,
     uint8_t *out = &image->pixels[(size_t)j * settings->width * 3];
     for (int i = 0; i < settings->width; i++) {
         color c = RenderPixel(scene, settings, i, j, stats);
+        if (scene->shading == SHADING_PATH) // light, not a colour: encode it for the screen
+            c = {SrgbEncode(c.x), SrgbEncode(c.y), SrgbEncode(c.z)};
         out[3 * i + 0] = ToByte(c.x);
         out[3 * i + 1] = ToByte(c.y);
         out[3 * i + 2] = ToByte(c.z);
@@ -177,7 +193,7 @@ static bool TakeRow(const Scene *scene, const RenderSettings *settings, RowQueue
     int j = queue->nextRow.fetch_add(1);
     if (j >= settings->height)
         return false;
-    RayStats row = {0, 0, 0, 0, 0};
+    RayStats row = {};
     RenderRow(scene, settings, j, image, &row);
     AddStats(&row, stats);
     queue->raysCast.fetch_add(row.primary + row.shadow + row.reflection + row.refraction);
@@ -210,7 +226,7 @@ void Render(const Scene *scene, const RenderSettings *requested, Image *image, R
     image->height = settings->height;
     image->pixels.assign((size_t)settings->width * settings->height * 3, 0);
     int threads = std::max(1, std::min(settings->threads, settings->height));
-    std::vector<RayStats> perThread(threads, RayStats{0, 0, 0, 0, 0});
+    std::vector<RayStats> perThread(threads, RayStats{});
     RowQueue queue;
     std::vector<std::thread> workers;
     for (int k = 1; k < threads; k++)

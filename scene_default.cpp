@@ -9,12 +9,12 @@
 void BuildDefaultScene(Scene *scene) {
     InitScene(scene); // 512 x 512, camera perspective 0 0 0 2 2, ambient 0.2, floor, depth 10
     enum { MIRROR, RED, BLUE, WHITE };
-    // name      diffuse     ambient     ks n  mirror ior
+    // name      diffuse     ambient     ks n  mirror ior emit
     scene->materials = {
-        {"mirror", {1, 1, 1}, {1, 1, 1}, 0, 1, 1, 0},
-        {"red", {1, 0, 0}, {1, 0, 0}, 0, 1, 0, 0},
-        {"blue", {0, 0, 1}, {0, 0, 1}, 0, 1, 0, 0},
-        {"white", {1, 1, 1}, {1, 1, 1}, 0, 1, 0, 0},
+        {"mirror", {1, 1, 1}, {1, 1, 1}, 0, 1, 1, 0, {0, 0, 0}},
+        {"red", {1, 0, 0}, {1, 0, 0}, 0, 1, 0, 0, {0, 0, 0}},
+        {"blue", {0, 0, 1}, {0, 0, 1}, 0, 1, 0, 0, {0, 0, 0}},
+        {"white", {1, 1, 1}, {1, 1, 1}, 0, 1, 0, 0, {0, 0, 0}},
     };
     // center          radius  material
     scene->spheres = {

@@ -80,6 +80,13 @@ static bool CheckColor(const Statement *st, const char *what, color c, std::stri
 }
 
 // A statement that may appear once: marks it, or reports the second one.
+// Light (a light's intensity, a material's emitted radiance): any finite amount >= 0, since a
+// light may be brighter than the white a pixel can show.
+static bool CheckLight(const Statement *st, const char *what, color c, std::string *error) {
+    bool ok = c.x >= 0 && c.y >= 0 && c.z >= 0 && IsFinite(c);
+    return ok || Fail(st, std::string(what) + ": each value must be a finite number >= 0", error);
+}
+
 static bool Once(const Statement *st, bool *seen, std::string *error) {
     if (*seen)
         return Fail(st, "second '" + st->tokens[0] + "' statement (only one is allowed)", error);
@@ -146,13 +153,14 @@ static bool ReadLight(const Statement *st, Scene *scene, std::string *error) {
     if (!Numbers(st, 1, (int)total - 1, total, v, error))
         return false;
     Light light = {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
-    if (!CheckColor(st, "light", light.intensity, error))
+    if (!CheckLight(st, "light", light.intensity, error))
         return false;
     scene->lights.push_back(light);
     return true;
 }
 
-// `material NAME [diffuse R G B] [ambient R G B] [specular KS N] [mirror K] [glass IOR]`
+// `material NAME [diffuse R G B] [ambient R G B] [specular KS N] [mirror K] [glass IOR]
+// [emit R G B]`
 // One property of a material statement with its numbers v (already read): checked and set.
 static bool SetMaterialProperty(const Statement *st, const std::string &key, const real *v,
                                 Material *m, std::string *error) {
@@ -166,6 +174,9 @@ static bool SetMaterialProperty(const Statement *st, const std::string &key, con
             return Fail(st, "material: specular KS and N must be >= 0", error);
         m->specular = v[0];
         m->shininess = v[1];
+    } else if (key == "emit") {
+        m->emit = {v[0], v[1], v[2]};
+        return CheckLight(st, "material: emit", m->emit, error);
     } else if (key == "mirror") {
         if (!(v[0] >= 0 && v[0] <= 1))
             return Fail(st, "material: mirror fraction must be in [0, 1]", error);
@@ -181,21 +192,21 @@ static bool SetMaterialProperty(const Statement *st, const std::string &key, con
 static bool ReadMaterial(const Statement *st, Scene *scene, std::string *error) {
     if (st->tokens.size() < 2)
         return Fail(st, "material: missing name", error);
-    Material m = {st->tokens[1], {1, 1, 1}, {1, 1, 1}, 0, 1, 0, 0};
+    Material m = {st->tokens[1], {1, 1, 1}, {1, 1, 1}, 0, 1, 0, 0, {0, 0, 0}};
     for (const Material &other : scene->materials)
         if (other.name == m.name)
             return Fail(st, "material " + Shown(m.name) + " is defined twice", error);
     std::string keysSeen;
     for (size_t k = 2; k < st->tokens.size();) {
         const std::string &key = st->tokens[k];
-        int count = key == "diffuse" || key == "ambient" ? 3
-                    : key == "specular"                  ? 2
-                    : key == "mirror" || key == "glass"  ? 1
-                                                         : 0;
+        int count = key == "diffuse" || key == "ambient" || key == "emit" ? 3
+                    : key == "specular"                                   ? 2
+                    : key == "mirror" || key == "glass"                   ? 1
+                                                                          : 0;
         if (count == 0)
             return Fail(st,
                         "material: unknown property " + Shown(key) +
-                            " (expected diffuse, ambient, specular, mirror or glass)",
+                            " (expected diffuse, ambient, specular, mirror, glass or emit)",
                         error);
         if (keysSeen.find(" " + key + " ") != std::string::npos)
             return Fail(st, "material: '" + key + "' given twice", error);
@@ -321,9 +332,12 @@ static bool ReadStatement(const Statement *st, Scene *scene, Declared *declared,
     if (k == "shading") {
         if (!Once(st, &declared->shading, error))
             return false;
-        if (st->tokens.size() != 2 || (st->tokens[1] != "floor" && st->tokens[1] != "phong"))
-            return Fail(st, "shading: expected 'floor' or 'phong'", error);
-        scene->shading = st->tokens[1] == "phong" ? SHADING_PHONG : SHADING_FLOOR;
+        const std::string *word = st->tokens.size() == 2 ? &st->tokens[1] : nullptr;
+        if (!word || (*word != "floor" && *word != "phong" && *word != "path"))
+            return Fail(st, "shading: expected 'floor', 'phong' or 'path'", error);
+        scene->shading = *word == "phong"  ? SHADING_PHONG
+                         : *word == "path" ? SHADING_PATH
+                                           : SHADING_FLOOR;
         return true;
     }
     return Fail(st, "unknown keyword " + Shown(k), error);

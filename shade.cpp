@@ -18,20 +18,39 @@ static bool MaterialIsUsed(const Scene *scene, int material) {
     return false;
 }
 
+// `shading path`: the shapes whose material emits, for next-event estimation.
+static void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters) {
+    auto emits = [scene](int material) {
+        color e = scene->materials[material].emit;
+        return e.x > 0 || e.y > 0 || e.z > 0;
+    };
+    for (int i = 0; i < (int)scene->spheres.size(); i++)
+        if (emits(scene->spheres[i].material))
+            emitters->push_back({SHAPE_SPHERE, i});
+    for (int i = 0; i < (int)scene->triangles.size(); i++)
+        if (emits(scene->triangles[i].material))
+            emitters->push_back({SHAPE_TRIANGLE, i});
+}
+
 void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects) {
     bool shapes = !scene->spheres.empty() || !scene->triangles.empty();
-    bool lights = !scene->lights.empty();
-    *effects = Effects{lights && shapes, false, false, false, settings->samplesPerPixel > 1};
+    bool lights = !scene->lights.empty(), path = scene->shading == SHADING_PATH;
+    *effects =
+        Effects{lights && shapes, false, false, false, settings->samplesPerPixel > 1, false, {}};
+    bool chain = settings->depth > 1; // room for a ray after the primary one
     for (int k = 0; k < (int)scene->materials.size(); k++) {
         const Material *m = &scene->materials[k];
         if (!MaterialIsUsed(scene, k))
             continue;
-        bool chain = settings->depth > 1; // room for a ray after the primary one
         effects->reflection = effects->reflection || (chain && (m->mirror > 0 || m->ior > 0));
         effects->refraction = effects->refraction || (chain && m->ior > 0);
         effects->specular =
             effects->specular || (scene->shading == SHADING_PHONG && lights && m->specular > 0);
+        bool diffuse = m->mirror < 1 && !(m->ior > 0) && MaxComponent(m->diffuse) > 0;
+        effects->indirect = effects->indirect || (path && chain && diffuse);
     }
+    if (path)
+        FindEmitters(scene, &effects->emitters);
 }
 
 // Adds one shape (or 0: none) to the hash of the shapes a pixel sample's rays met, in order
@@ -44,7 +63,7 @@ static uint64_t MixSurface(uint64_t hash, uint64_t shape) {
 }
 
 // Adds a node for `ray` to the ray tree, if one is being recorded; returns its index or -1.
-static int RecordRay(RayKind kind, const Ray *ray, TraceLog *log) {
+int RecordRay(RayKind kind, const Ray *ray, TraceLog *log) {
     if (!log->tree)
         return -1;
     RayNode node = {kind, *ray, false, {}, {0, 0, 0}, log->current};
@@ -257,8 +276,9 @@ static color ShadeHit(const Shading *sh, const Surface *s) {
     return result;
 }
 
-static void CountRay(RayKind kind, RayStats *stats) {
-    uint64_t *counter[] = {&stats->primary, &stats->shadow, &stats->reflection, &stats->refraction};
+void CountRay(RayKind kind, RayStats *stats) {
+    uint64_t *counter[] = {&stats->primary, &stats->shadow, &stats->reflection, &stats->refraction,
+                           &stats->diffuse};
     (*counter[kind])++;
 }
 

@@ -70,7 +70,7 @@ static color ViewValue(const Scene *scene, const RenderSettings *settings, ViewK
     GetCameraRay(&settings->camera, settings->width, settings->height, SamplePosition(i, j, 0, 1),
                  &ray);
     if (view == VIEW_COST) {
-        RayStats stats = {0, 0, 0, 0, 0};
+        RayStats stats = {};
         TraceLog log = {stats, nullptr, -1, 0};
         TraceRay(scene, settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
         *scalar = real(log.stats.primary + log.stats.shadow + log.stats.reflection +

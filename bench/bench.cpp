@@ -54,7 +54,7 @@ static const BenchScene kScenes[] = {{"assignment", 512, BuildDefaultScene},
 static RenderSettings Settings(const BenchScene &b, int spp, SampleMethod sampling) {
     unsigned hardware = std::thread::hardware_concurrency();
     RenderSettings s = {b.size,         b.size, spp, sampling, 10, hardware ? (int)hardware : 1,
-                        kRobustMethods, false,  {},  {}};
+                        kRobustMethods, false,  {},  {},       {}};
     return s;
 }
 
@@ -65,7 +65,7 @@ static double TimeRender(const Scene *scene, const RenderSettings *s, Image *ima
     std::vector<double> times;
     double total = 0;
     while ((int)times.size() < kRuns || total < kMinSeconds) {
-        RayStats stats = {0, 0, 0, 0, 0};
+        RayStats stats = {};
         auto start = std::chrono::steady_clock::now();
         Render(scene, s, image, &stats);
         times.push_back(
@@ -141,7 +141,7 @@ static bool BaseImage(const std::string &dir, const BenchScene &b, const Scene *
     if (sizeof(real) != sizeof(double))
         return ReadPng(path.c_str(), base, &error);
     RenderSettings s = Settings(b, 1, SAMPLES_GRID);
-    RayStats stats = {0, 0, 0, 0, 0};
+    RayStats stats = {};
     Render(scene, &s, base, &stats);
     return WriteImage(path.c_str(), base, &error);
 }
@@ -152,7 +152,7 @@ static bool Reference(const std::string &dir, const BenchScene &b, const Scene *
     if (sizeof(real) != sizeof(double)) // the float build reads the double build's reference
         return ReadPng(path.c_str(), reference, &error);
     RenderSettings s = Settings(b, kReferenceSpp, SAMPLES_GRID);
-    RayStats stats = {0, 0, 0, 0, 0};
+    RayStats stats = {};
     fprintf(stderr, "bench: %-10s reference, %d spp grid, double...\n", b.name, kReferenceSpp);
     Render(scene, &s, reference, &stats);
     return WriteImage(path.c_str(), reference, &error);

@@ -26,7 +26,7 @@ static Scene SphereMesh(int level) {
     Scene scene;
     InitScene(&scene);
     scene.width = scene.height = 256;
-    scene.materials = {{"white", {real(0.9), real(0.9), real(0.9)}, {1, 1, 1}, 0, 1, 0, 0}};
+    scene.materials = {{"white", {real(0.9), real(0.9), real(0.9)}, {1, 1, 1}, 0, 1, 0, 0, {0, 0, 0}}};
     scene.lights = {{{3, 5, 0}, {1, 1, 1}}};
     vec3 p[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     int f[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},

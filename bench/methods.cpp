@@ -64,9 +64,10 @@ static void TimeRoutine(const char *name, Routine routine, Robust robust) {
 }
 
 static Image RenderWith(const Scene *scene, Methods methods) {
-    RenderSettings settings = {128, 128, 1, SAMPLES_GRID, scene->depth, 2, methods, false, {}, {}};
+    RenderSettings settings = {128, 128, 1, SAMPLES_GRID, scene->depth, 2, methods, false,
+                               {},  {},  {}};
     Image image;
-    RayStats stats = {0, 0, 0, 0, 0};
+    RayStats stats = {};
     Render(scene, &settings, &image, &stats);
     return image;
 }
@@ -95,10 +96,11 @@ struct Kinds {
 };
 
 static std::vector<RayNode> CentreTree(const Scene *scene, Methods methods, int i, int j) {
-    RenderSettings settings = {128, 128, 1, SAMPLES_GRID, scene->depth, 1, methods, false, {}, {}};
+    RenderSettings settings = {128, 128, 1, SAMPLES_GRID, scene->depth, 1, methods, false,
+                               {},  {},  {}};
     PlanRender(scene, &settings);
     std::vector<RayNode> tree;
-    TraceLog log = {RayStats{0, 0, 0, 0, 0}, &tree, -1, 0};
+    TraceLog log = {RayStats{}, &tree, -1, 0};
     Ray ray;
     GetCameraRay(&settings.camera, 128, 128, SamplePosition(i, j, 0, 1), &ray);
     TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
@@ -139,10 +141,10 @@ struct PlotPoint {
 static double RenderMilliseconds(const Scene &test, Methods methods) {
     double times[3];
     for (double &t : times) {
-        RenderSettings settings = {128, 128,     1,     SAMPLES_GRID, test.depth,
-                                   1,   methods, false, {},           {}};
+        RenderSettings settings = {128,     128,   1,  SAMPLES_GRID, test.depth, 1,
+                                   methods, false, {}, {},           {}};
         Image image;
-        RayStats stats = {0, 0, 0, 0, 0};
+        RayStats stats = {};
         auto start = std::chrono::steady_clock::now();
         Render(&test, &settings, &image, &stats);
         t = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -286,8 +288,9 @@ static void EpsilonPicture(const Scene &test, real scale, const std::string &pat
     Image sides[2];
     for (int k = 0; k < 2; k++) {
         RenderSettings settings = {
-            256, 256, 1, SAMPLES_GRID, scene.depth, 2, k ? epsilon : kRobustMethods, false, {}, {}};
-        RayStats stats = {0, 0, 0, 0, 0};
+            256, 256, 1, SAMPLES_GRID, scene.depth, 2, k ? epsilon : kRobustMethods, false,
+            {},  {},  {}};
+        RayStats stats = {};
         Render(&scene, &settings, &sides[k], &stats);
     }
     Image both = {2 * 256 + 4, 256, {}};

@@ -134,8 +134,9 @@ static double Alike(double scale, double shift, const char *camera, bool glass) 
             k ? AssignmentText(scale, shift, camera, glass) : AssignmentText(1, 0, camera, glass);
         if (!ParseSceneText(text, "r.scene", &scene, &error))
             return -1;
-        RenderSettings settings = {64, 64, 1, SAMPLES_GRID, 10, 1, kRobustMethods, false, {}, {}};
-        RayStats stats = {0, 0, 0, 0, 0};
+        RenderSettings settings = {64, 64, 1, SAMPLES_GRID, 10, 1, kRobustMethods, false,
+                                   {}, {}, {}};
+        RayStats stats = {};
         Render(&scene, &settings, &images[k], &stats);
     }
     long alike = 0;

@@ -17,7 +17,7 @@ vec3 Turn(vec3 p, bool turn) {
 Scene WallScene() {
     Scene s;
     InitScene(&s);
-    Material wall = {"wall", {1, 1, 1}, {1, 1, 1}, 0, 1, 0, 0};
+    Material wall = {"wall", {1, 1, 1}, {1, 1, 1}, 0, 1, 0, 0, {0, 0, 0}};
     s.materials.push_back(wall);
     return s;
 }

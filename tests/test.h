@@ -73,6 +73,7 @@ void TestRanges();
 void TestFiles();
 void TestMethods();
 void TestLayout();
+void TestPath();
 void TestMesh();
 void TestMeshRays();
 

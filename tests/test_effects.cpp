@@ -38,7 +38,7 @@ static void CountByHand(const Scene *scene, const RenderSettings *s, int mirrorS
 static RayStats RenderCounting(const Scene *scene, RenderSettings *settings) {
     PlanRender(scene, settings);
     Image image;
-    RayStats stats = {0, 0, 0, 0, 0};
+    RayStats stats = {};
     Render(scene, settings, &image, &stats);
     return stats;
 }
@@ -123,7 +123,7 @@ static std::vector<RayNode> GlassTree(vec3 origin, vec3 dir) {
     scene.spheres = {{{0, 0, 0}, 1, 0}};
     RenderSettings s = TestSettings(&scene);
     std::vector<RayNode> tree;
-    TraceLog log = {RayStats{0, 0, 0, 0, 0}, &tree, -1, 0};
+    TraceLog log = {RayStats{}, &tree, -1, 0};
     Ray ray = {origin, dir};
     TraceRay(&scene, &s, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
     return tree;
@@ -210,7 +210,7 @@ static color PhongAt(vec3 eye, vec3 lightPosition, real shininess, RayStats *sta
     scene.triangles = {{{-100, 0, 100}, {100, 0, 100}, {0, 0, -100}, 0}};
     scene.lights = {{lightPosition, {1, 1, 1}}};
     RenderSettings s = TestSettings(&scene);
-    TraceLog log = {RayStats{0, 0, 0, 0, 0}, nullptr, -1, 0};
+    TraceLog log = {RayStats{}, nullptr, -1, 0};
     Ray ray = {eye, vec3{0, 0, 0} - eye};
     color c = TraceRay(&scene, &s, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
     *stats = log.stats;

@@ -75,6 +75,7 @@ int main() {
     TestFiles();
     TestMethods();
     TestLayout();
+    TestPath();
     TestSceneFiles();
     TestMesh();
     TestMeshRays();

@@ -20,7 +20,7 @@ static Image RenderWith(const Scene *scene, Methods methods, int size) {
     settings.methods = methods;
     PlanRender(scene, &settings);
     Image image;
-    RayStats stats = {0, 0, 0, 0, 0};
+    RayStats stats = {};
     Render(scene, &settings, &image, &stats);
     return image;
 }
@@ -123,7 +123,7 @@ static void TestEpsilonLosesSmallShadows() {
         RenderSettings settings = TestSettings(&s);
         settings.methods = k ? epsilon : kRobustMethods;
         PlanRender(&s, &settings);
-        TraceLog log = {RayStats{0, 0, 0, 0, 0}, nullptr, -1, 0};
+        TraceLog log = {RayStats{}, nullptr, -1, 0};
         // from the side, low, onto the floor at x = 0.9 r, under the ball's flank
         vec3 target = {real(0.9) * r, 0, 0}, from = {1, real(0.1) * r, 0};
         Ray ray = {from, target - from};
@@ -148,7 +148,7 @@ static void TestSkipCannotSeeGlassFromInside() {
         settings.methods.selfHit = k ? SELF_HIT_SKIP : SELF_HIT_BOUND;
         PlanRender(&s, &settings);
         std::vector<RayNode> tree;
-        TraceLog log = {RayStats{0, 0, 0, 0, 0}, &tree, -1, 0};
+        TraceLog log = {RayStats{}, &tree, -1, 0};
         Ray ray = {{0, real(0.3), 0}, {0, 0, -1}};
         TraceRay(&s, &settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
         bool leavesFromInside = false;

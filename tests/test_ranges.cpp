@@ -18,7 +18,7 @@ static bool RenderText(const std::string &text, Image *image) {
     if (!ParseSceneText(text, "range.scene", &scene, &error))
         return false;
     RenderSettings settings = TestSettings(&scene);
-    RayStats stats = {0, 0, 0, 0, 0};
+    RayStats stats = {};
     Render(&scene, &settings, image, &stats);
     return true;
 }
@@ -161,7 +161,7 @@ static void TestFarLight() {
     RenderSettings settings = TestSettings(&scene);
     real shadow = -1, lit = -1;
     for (real x : {real(0), real(500)}) {
-        TraceLog log = {RayStats{0, 0, 0, 0, 0}, nullptr, -1, 0};
+        TraceLog log = {RayStats{}, nullptr, -1, 0};
         Ray ray = {{x, 50, 30}, {0, -50, -30}};
         color c = read ? TraceRay(&scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye,
                                   RayChain{1, 1}, &log)

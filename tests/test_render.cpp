@@ -62,7 +62,7 @@ void TestAssignmentImage() {
               scene.spheres.size() == 3 && scene.triangles.size() == 5 && scene.lights.size() == 1,
           "assignment scene: 512 x 512, depth 10, 3 spheres, 5 triangles, 1 light");
     for (const PixelPrediction &p : kAssignmentPixels) {
-        RayStats stats = {0, 0, 0, 0, 0};
+        RayStats stats = {};
         color c = RenderPixel(&scene, &settings, p.i, p.j, &stats);
         uint8_t got[3] = {ToByte(c.x), ToByte(c.y), ToByte(c.z)};
         CHECK(got[0] == p.rgb[0] && got[1] == p.rgb[1] && got[2] == p.rgb[2],
@@ -73,7 +73,7 @@ void TestAssignmentImage() {
 
     // The whole image: the same bytes for 1 and 2 threads, and the rays the scene needs
     Image one, two;
-    RayStats stats1 = {0, 0, 0, 0, 0}, stats2 = {0, 0, 0, 0, 0};
+    RayStats stats1 = {}, stats2 = {};
     Render(&scene, &settings, &one, &stats1);
     settings.threads = 2;
     Render(&scene, &settings, &two, &stats2);
@@ -90,7 +90,7 @@ void TestAssignmentImage() {
     for (SampleMethod method : {SAMPLES_JITTER, SAMPLES_ADAPTIVE}) {
         settings.sampling = method;
         settings.threads = 1;
-        RayStats a = {0, 0, 0, 0, 0}, b = {0, 0, 0, 0, 0};
+        RayStats a = {}, b = {};
         Render(&scene, &settings, &one, &a);
         settings.threads = 2;
         Render(&scene, &settings, &two, &b);
@@ -106,7 +106,7 @@ void TestAssignmentImage() {
     // Where nothing varies (an empty scene), adaptive sampling stops at its first 5 samples
     Scene empty;
     InitScene(&empty);
-    RayStats e = {0, 0, 0, 0, 0};
+    RayStats e = {};
     Render(&empty, &settings, &one, &e);
     CHECK(e.primary == 64 * 64 * 5, "--aa adaptive on an empty scene: exactly 5 rays per pixel");
     // Two triangles of one flat colour (no light: ambient only) filling the view: the colour never
@@ -117,7 +117,7 @@ void TestAssignmentImage() {
     flat.materials.push_back(Matte("grey", {real(0.5), real(0.5), real(0.5)}));
     flat.triangles = {{{-5, -5, -2}, {5, -5, -2}, {5, 5, -2}, 0},
                       {{-5, -5, -2}, {5, 5, -2}, {-5, 5, -2}, 0}};
-    RayStats f = {0, 0, 0, 0, 0};
+    RayStats f = {};
     Render(&flat, &settings, &one, &f);
     CHECK(f.primary > 64 * 64 * 5 && (f.primary - 64 * 64 * 5) % 15 == 0 &&
               f.primary < 64 * 64 * 5 + 15 * 64 * 3,
@@ -130,7 +130,7 @@ void TestAssignmentImage() {
     settings.samplesPerPixel = 4;
     settings.width = settings.height = 64;
     PlanRender(&scene, &settings);
-    RayStats stats4 = {0, 0, 0, 0, 0};
+    RayStats stats4 = {};
     Render(&scene, &settings, &one, &stats4);
     CHECK(stats4.primary == 64 * 64 * 4, "--spp 4 on 64 x 64: exactly 16384 primary rays");
 }

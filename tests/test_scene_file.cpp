@@ -36,7 +36,7 @@ static const BadScene kBadScenes[] = {
     {"camera perspective 0 0 0 2 2\ncamera perspective 0 0 0 2 2", 2, "second 'camera'"},
     {"depth 0", 1, "between 1 and 1000"},
     {"depth 1001", 1, "between 1 and 1000"},
-    {"shading gouraud", 1, "'floor' or 'phong'"},
+    {"shading gouraud", 1, "'floor', 'phong' or 'path'"},
     {"background 0 0 2", 1, "[0, 1]"},
     {"background 0 0", 1, "missing number"},
     {"camera fisheye 1", 1, "unknown kind"},
@@ -72,7 +72,9 @@ static const BadScene kBadScenes[] = {
     {"material m glass -1.5", 1, "index of refraction must be > 0"},
     {"material m shiny 3", 1, "unknown property 'shiny'"},
     {"light 0 0 0 1 1", 1, "missing number"},
-    {"light 0 0 0 1 1 2", 1, "[0, 1]"},
+    {"light 0 0 0 1 1 -2", 1, "finite number >= 0"},
+    {"material m emit 1 -1 1", 1, "finite number >= 0"},
+    {"material m emit 1 1", 1, "'emit' needs 3 number(s)"},
     {"light 0 0 0 1 1 1 1", 1, "extra value"},
     {"\x01\x02\xff\xfe garbage", 1, "unknown keyword '?\?\?\?'"},
     {"# ok\r\nsize 64 64\r\nbogus\r\n", 3, "unknown keyword 'bogus'"}, // CRLF counts lines too
@@ -218,7 +220,7 @@ static void TestBuiltInSceneFiles() {
             PlanRender(&fromFile, &b);
         }
         Image imageA, imageB;
-        RayStats stats = {0, 0, 0, 0, 0};
+        RayStats stats = {};
         Render(&builtIn, &a, &imageA, &stats);
         Render(&fromFile, &b, &imageB, &stats);
         CHECK(imageA.pixels == imageB.pixels,

@@ -6,8 +6,10 @@
 #include "test.h"
 
 // A matte material of grey level kd, or a mirror reflecting the fraction k.
-Material Matte(const char *name, color kd) { return {name, kd, kd, 0, 1, 0, 0}; }
-Material Mirror(const char *name, real k) { return {name, {1, 1, 1}, {1, 1, 1}, 0, 1, k, 0}; }
+Material Matte(const char *name, color kd) { return {name, kd, kd, 0, 1, 0, 0, {0, 0, 0}}; }
+Material Mirror(const char *name, real k) {
+    return {name, {1, 1, 1}, {1, 1, 1}, 0, 1, k, 0, {0, 0, 0}};
+}
 
 static Scene FloorScene(vec3 lightPosition, real diffuse) {
     Scene scene;
@@ -22,7 +24,7 @@ static Scene FloorScene(vec3 lightPosition, real diffuse) {
 static color Shade(const Scene *scene, vec3 origin, vec3 dir, RayStats *stats) {
     RenderSettings settings = TestSettings(scene);
     Ray ray = {origin, dir};
-    TraceLog log = {RayStats{0, 0, 0, 0, 0}, nullptr, -1, 0};
+    TraceLog log = {RayStats{}, nullptr, -1, 0};
     color c = TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
     *stats = log.stats;
     return c;

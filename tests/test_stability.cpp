@@ -12,7 +12,7 @@ static void TestScaleInvariance() {
     RenderSettings settings = TestSettings(&scene);
     settings.threads = 2;
     Image original;
-    RayStats stats = {0, 0, 0, 0, 0};
+    RayStats stats = {};
     Render(&scene, &settings, &original, &stats);
     struct {
         real scale;
@@ -92,7 +92,7 @@ static void TestNoNaN() {
         PlanRender(&scene, &settings);
         for (int j = 0; j < 24; j++)
             for (int i = 0; i < 24; i++) {
-                RayStats stats = {0, 0, 0, 0, 0};
+                RayStats stats = {};
                 badPixels += !IsFinite(RenderPixel(&scene, &settings, i, j, &stats));
             }
         scenes++;

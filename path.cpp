@@ -1,0 +1,356 @@
+// path.cpp -- `shading path`: the learning journal's diffuse scattering, as a path tracer.
+//
+// A pixel is the Monte Carlo estimate of the light that reaches the eye after any number of
+// bounces (Kajiya, "The Rendering Equation", SIGGRAPH 1986). Each sample follows one path: at a
+// diffuse surface of reflectance rho (the material's `diffuse`), whose BRDF is rho / pi, it adds
+// the light arriving straight from the lights (next-event estimation) and goes on in one random
+// direction; at a mirror or glass it goes on as the chain of rays does (shade.cpp), choosing
+// reflection or refraction at random in proportion to their shares. Emitting surfaces (`emit`)
+// give off their radiance on both sides; a point light of intensity I gives irradiance
+// I cos(theta) / r^2; a ray that escapes brings the background, light from every direction.
+// Random numbers come from a hash of (pixel, sample, bounce, dimension), so the image never
+// depends on the thread count. Pixels are written sRGB-encoded (render.cpp).
+#include "ray.h"
+
+#include <algorithm>
+
+const real kPi = real(3.14159265358979323846);
+
+// Which path a random number belongs to: the pixel, the sample in it, and the render's seed.
+struct PathSample {
+    int i, j, s, seed;
+};
+
+// The random number for one decision of one path, in [0, 1): SplitMix64's finaliser (as the
+// jitter's hash, render.cpp) over the pixel, the sample, the bounce and the decision, with a
+// word of its own so these never repeat the jitter's numbers.
+static real PathRandom(const PathSample *p, int bounce, int dimension) {
+    uint64_t z = 0x70617468; // "path"
+    for (uint64_t word : {(uint64_t)p->seed, (uint64_t)p->i, (uint64_t)p->j, (uint64_t)p->s,
+                          (uint64_t)bounce * 16 + (uint64_t)dimension}) {
+        z += word + 0x9e3779b97f4a7c15ULL;
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+        z ^= z >> 31;
+    }
+    return real((z >> 40) * (1.0 / 16777216.0)); // 24 bits: exact in float too, and below 1
+}
+
+// The decisions of one bounce, each with its own random number.
+enum Decision { PICK_SURFACE, SCATTER_U, SCATTER_V, PICK_EMITTER, EMITTER_U, EMITTER_V, ROULETTE };
+
+// Two unit vectors that make an orthonormal basis with the unit n (Duff et al., "Building an
+// Orthonormal Basis, Revisited", JCGT 6(1), 2017: no division by a small number, no branch on
+// which axis n is near).
+static void Basis(vec3 n, vec3 *t, vec3 *b) {
+    real sign = std::copysign(real(1), n.z);
+    real a = -1 / (sign + n.z), c = n.x * n.y * a;
+    *t = {1 + sign * n.x * n.x * a, sign * c, -sign * n.x};
+    *b = {c, sign + n.y * n.y * a, -n.y};
+}
+
+// The density (per solid angle) with which the scatter method draws a direction at angle theta
+// from the normal: cos(theta) / pi, or 1 / (2 pi) over the hemisphere.
+static real ScatterPdf(ScatterMethod method, real cosTheta) {
+    return method == SCATTER_COSINE ? cosTheta / kPi : 1 / (2 * kPi);
+}
+
+// A random direction on the hemisphere around the unit n. Cosine-weighted: a uniform point on
+// the unit disk lifted onto the hemisphere (Malley's method; Ray Tracing in One Weekend's
+// normal + random_unit_vector draws the same density). Uniform: cos(theta) uniform in [0, 1)
+// (Archimedes: equal heights cut equal areas from a sphere).
+static vec3 ScatterDirection(ScatterMethod method, vec3 n, real u, real v) {
+    real cosTheta = method == SCATTER_COSINE ? std::sqrt(1 - u) : 1 - u;
+    real sinTheta = std::sqrt(std::max(real(0), 1 - cosTheta * cosTheta));
+    real phi = 2 * kPi * v;
+    vec3 t, b;
+    Basis(n, &t, &b);
+    return (sinTheta * std::cos(phi)) * t + (sinTheta * std::sin(phi)) * b + cosTheta * n;
+}
+
+// Veach's power heuristic (Veach, "Robust Monte Carlo Methods for Light Transport Simulation",
+// 1997, §9.2.4, beta = 2): the weight of a sample drawn with density a, when density b could
+// also have drawn it.
+static real PowerHeuristic(real a, real b) {
+    if (!(a > 0))
+        return 0;
+    return (a * a) / (a * a + b * b);
+}
+
+// ---- emitters: the shapes whose material has `emit` (PlanEffects lists them) ---------------
+
+static bool Emits(const Material *m) { return m->emit.x > 0 || m->emit.y > 0 || m->emit.z > 0; }
+
+real EmitterArea(const Scene *scene, const Emitter *e) {
+    if (e->shape == SHAPE_SPHERE) {
+        real r = scene->spheres[e->index].radius;
+        return 4 * kPi * r * r;
+    }
+    const Triangle *t = &scene->triangles[e->index];
+    return real(0.5) * SafeLength(Cross(t->b - t->a, t->c - t->a));
+}
+
+// A point drawn uniformly over the emitter's surface, and the unit normal there. A sphere: the
+// height z uniform in [-1, 1] (Archimedes again). A triangle: barycentric coordinates from the
+// square root of u, which spreads the points evenly (Shirley & Chiu 1997; pbrt-v4 §A.5.4).
+static void SampleEmitter(const Scene *scene, const Emitter *e, real u, real v, vec3 *p, vec3 *n) {
+    if (e->shape == SHAPE_SPHERE) {
+        const Sphere *s = &scene->spheres[e->index];
+        real z = 1 - 2 * u, r = std::sqrt(std::max(real(0), 1 - z * z)), phi = 2 * kPi * v;
+        *n = {r * std::cos(phi), r * std::sin(phi), z};
+        *p = s->center + s->radius * *n;
+        return;
+    }
+    const Triangle *t = &scene->triangles[e->index];
+    real root = std::sqrt(u), b0 = 1 - root, b1 = v * root;
+    *p = b0 * t->a + b1 * t->b + (1 - b0 - b1) * t->c;
+    *n = SafeNormalize(Cross(t->b - t->a, t->c - t->a));
+}
+
+// The density, per solid angle at the shaded point, with which next-event estimation picks a
+// point of an emitter of this area, seen dist2 away (squared) at cosine cosLight to its normal:
+// 1 / count for the emitter, 1 / area for the point, times dist2 / cosLight from area to solid
+// angle.
+static real EmitterPdf(size_t count, real area, real dist2, real cosLight) {
+    return dist2 / ((real)count * area * cosLight);
+}
+
+// ---- one path --------------------------------------------------------------------------------
+
+// A path being followed: its random numbers, the light gathered so far, the share of light the
+// next vertex passes on to the pixel, the ray to follow, and what the last bounce was.
+struct Path {
+    const Scene *scene;
+    const RenderSettings *settings;
+    TraceLog *log;
+    PathSample sample;
+    int bounce;     // 0 for the primary ray's vertex
+    color light;    // gathered so far
+    color through;  // the throughput: what the next vertex's light counts in the pixel
+    Ray ray;        // the ray to follow
+    RayStart start; // and what it must not hit (the surface it leaves)
+    RayKind kind;
+    real scatterPdf; // the density the last diffuse bounce drew the ray with; 0: not diffuse
+};
+
+static real Random(const Path *path, Decision d) {
+    return PathRandom(&path->sample, path->bounce, d);
+}
+
+// Whether point p (unit normal n) of emitter e can face the shaded hit at all: from outside a
+// sphere only its near half can be seen, the points whose normal leans toward the hit; from
+// inside, all of it. A triangle is seen from both sides.
+static bool Faces(const Scene *scene, const Emitter *e, const RayHit *hit, vec3 p, vec3 n) {
+    if (e->shape != SHAPE_SPHERE)
+        return true;
+    const Sphere *s = &scene->spheres[e->index];
+    bool inside = hit->shape == SHAPE_SPHERE && hit->index == e->index
+                      ? !hit->frontFace // on the sphere itself: the side it was hit from
+                      : SafeLength(hit->point - s->center) < s->radius;
+    return inside || Dot(n, hit->point - p) > 0;
+}
+
+// Whether nothing stands between the shaded hit and the point p of emitter e, which faces it:
+// the nearest hit toward p (t = 1) is then e itself, at p (the line meets a facing point of a
+// sphere, or a triangle, nowhere before it).
+static bool EmitterVisible(Path *path, const RayHit *hit, const Emitter *e, vec3 p) {
+    const Methods *methods = &path->settings->methods;
+    Ray shadow;
+    RayStart start;
+    if (!ShadowRay(hit, p, methods, &shadow, &start))
+        return false;
+    path->log->stats.shadow++;
+    int node = RecordRay(RAY_SHADOW, &shadow, path->log);
+    RayHit blocker;
+    bool found = FindNearestHitFrom(path->scene, *methods, &shadow, &start, kInfinity, &blocker);
+    bool visible = found && blocker.shape == e->shape && blocker.index == e->index;
+    if (node >= 0) {
+        RayNode *n = &(*path->log->tree)[node];
+        n->hit = found && !visible;
+        if (found)
+            n->record = blocker;
+    }
+    return visible;
+}
+
+// Next-event estimation for the point lights: each gives irradiance I cos(theta) / r^2 where no
+// shape hides it, and the BRDF rho / pi turns that into light toward the eye. A point light can
+// never be hit by a scattered ray, so this is its only way into the image.
+static color PointLights(Path *path, const RayHit *hit, color rho) {
+    color sum = {0, 0, 0};
+    for (const Light &light : path->scene->lights) {
+        vec3 toLight = light.position - hit->point;
+        real distance = SafeLength(toLight);
+        real cosTheta = Dot(hit->normal, toLight) / distance;
+        if (!(cosTheta > 0))
+            continue;
+        Ray shadow;
+        RayStart start;
+        if (ShadowRay(hit, light.position, &path->settings->methods, &shadow, &start)) {
+            path->log->stats.shadow++;
+            int node = RecordRay(RAY_SHADOW, &shadow, path->log);
+            bool blocked = AnyHitFrom(path->scene, path->settings->methods, &shadow, &start, 1);
+            if (node >= 0)
+                (*path->log->tree)[node].hit = blocked;
+            if (blocked)
+                continue;
+        }
+        sum = sum + (cosTheta / (distance * distance)) * light.intensity;
+    }
+    return (1 / kPi) * rho * sum;
+}
+
+// Next-event estimation for the emitting shapes: one emitter picked uniformly, one point on it
+// picked uniformly by area, its light times the BRDF and cos(theta) over the density of picking
+// it, weighted against the scattered ray's chance of finding the same point (MIS).
+static color Emitters(Path *path, const RayHit *hit, color rho) {
+    const std::vector<Emitter> &emitters = path->settings->effects.emitters;
+    if (emitters.empty() || path->settings->path.lights == LIGHTS_NONE)
+        return {0, 0, 0};
+    size_t k =
+        std::min(emitters.size() - 1, (size_t)(Random(path, PICK_EMITTER) * emitters.size()));
+    const Emitter *e = &emitters[k];
+    vec3 p, n;
+    SampleEmitter(path->scene, e, Random(path, EMITTER_U), Random(path, EMITTER_V), &p, &n);
+    vec3 toPoint = p - hit->point;
+    real dist2 = Dot(toPoint, toPoint), dist = std::sqrt(dist2);
+    real cosTheta = Dot(hit->normal, toPoint) / dist, cosLight = std::fabs(Dot(n, toPoint)) / dist;
+    if (!(cosTheta > 0) || !(cosLight > 0) || !Faces(path->scene, e, hit, p, n) ||
+        !EmitterVisible(path, hit, e, p))
+        return {0, 0, 0};
+    int material = e->shape == SHAPE_SPHERE ? path->scene->spheres[e->index].material
+                                            : path->scene->triangles[e->index].material;
+    real pdf = EmitterPdf(emitters.size(), EmitterArea(path->scene, e), dist2, cosLight);
+    real weight = path->settings->path.lights == LIGHTS_MIS
+                      ? PowerHeuristic(pdf, ScatterPdf(path->settings->path.scatter, cosTheta))
+                      : 1;
+    return (weight * cosTheta / (kPi * pdf)) * (rho * path->scene->materials[material].emit);
+}
+
+// The share of an emitter's light that a path adds when its ray hits it: all of it after the
+// camera or a mirror or glass (no next-event estimation could have found that point), none
+// when next-event estimation alone counts emitters, and under MIS the scattered ray's weight.
+static real EmissionWeight(const Path *path, const RayHit *hit) {
+    LightMethod lights = path->settings->path.lights;
+    if (path->scatterPdf == 0 || lights == LIGHTS_NONE)
+        return 1;
+    if (lights == LIGHTS_NEE)
+        return 0;
+    Emitter e = {hit->shape, hit->index};
+    real distance = hit->t * SafeLength(path->ray.dir);
+    real cosLight = std::fabs(Dot(hit->normal, path->ray.dir)) / SafeLength(path->ray.dir);
+    real pdf = EmitterPdf(path->settings->effects.emitters.size(), EmitterArea(path->scene, &e),
+                          distance * distance, cosLight);
+    return PowerHeuristic(path->scatterPdf, pdf);
+}
+
+// The next ray of the path from a hit on material m, and what the bounce does to the
+// throughput; false if the path ends here. One random number picks what the surface does, in
+// proportion to its shares: the mirror fraction K reflects; of the rest, glass reflects
+// Fresnel's share R and refracts the others; a diffuse surface adds the light that reaches it
+// from the lights and scatters. Each choice is made with the probability of its share, so the
+// shares themselves drop out of the throughput.
+static bool Bounce(Path *path, const RayHit *hit, const Material *m) {
+    const Methods *methods = &path->settings->methods;
+    vec3 d = SafeNormalize(path->ray.dir), n = hit->normal;
+    real pick = Random(path, PICK_SURFACE);
+    path->scatterPdf = 0;
+    path->kind = RAY_REFLECTION;
+    if (pick < m->mirror) {
+        LeaveSurface(hit, Reflect(d, n), methods, &path->ray, &path->start);
+        return true;
+    }
+    if (m->ior > 0) {
+        real eta = hit->frontFace ? 1 / m->ior : m->ior, cosI = -Dot(d, n);
+        real reflectance = methods->fresnel == FRESNEL_SCHLICK ? SchlickReflectance(cosI, eta)
+                                                               : FresnelReflectance(cosI, eta);
+        vec3 refracted;
+        bool reflect = (pick - m->mirror) < reflectance * (1 - m->mirror) || // (the same number,
+                       !Refract(d, n, eta, &refracted);                      // past K)
+        if (!reflect)
+            path->kind = RAY_REFRACTION;
+        LeaveSurface(hit, reflect ? Reflect(d, n) : refracted, methods, &path->ray, &path->start);
+        return true;
+    }
+    color rho = m->diffuse;
+    path->light =
+        path->light + path->through * (PointLights(path, hit, rho) + Emitters(path, hit, rho));
+    ScatterMethod method = path->settings->path.scatter;
+    vec3 dir = ScatterDirection(method, n, Random(path, SCATTER_U), Random(path, SCATTER_V));
+    real cosTheta = Dot(dir, n);
+    if (!(cosTheta > 0) || !(MaxComponent(rho) > 0))
+        return false;
+    // The estimator's factor BRDF cos / density: with cosine sampling cos / pi over cos / pi,
+    // which cancels exactly, so it is rho itself (the white furnace's exact answer)
+    path->scatterPdf = ScatterPdf(method, cosTheta);
+    path->through = path->through *
+                    (method == SCATTER_COSINE ? rho : (cosTheta / (kPi * path->scatterPdf)) * rho);
+    path->kind = RAY_DIFFUSE;
+    LeaveSurface(hit, dir, methods, &path->ray, &path->start);
+    return true;
+}
+
+// Russian roulette (Arvo & Kirk, "Particle Transport and Image Synthesis", SIGGRAPH 1990): a
+// path whose throughput has fallen to q < 1 goes on with probability q, its throughput divided
+// by q, so the expected light is unchanged while dim paths end early. From the third ray on, so
+// the first bounces, which carry most of the light, are always followed.
+static bool Survives(Path *path) {
+    real q = std::min(real(1), MaxComponent(path->through));
+    if (q >= 1)
+        return true;
+    if (!(Random(path, ROULETTE) < q))
+        return false;
+    path->through = (1 / q) * path->through;
+    return true;
+}
+
+// What the ray tree shows for a path's rays (`--pixel`): each ray's node, and the light and
+// throughput when it was cast, from which the light it brought back follows at the end.
+struct PathNode {
+    int node;
+    color lightBefore, through;
+};
+
+static void FinishTree(const Path *path, const std::vector<PathNode> &nodes) {
+    for (const PathNode &p : nodes) {
+        color after = path->light - p.lightBefore, *out = &(*path->log->tree)[p.node].light;
+        *out = {p.through.x > 0 ? after.x / p.through.x : 0,
+                p.through.y > 0 ? after.y / p.through.y : 0,
+                p.through.z > 0 ? after.z / p.through.z : 0};
+    }
+}
+
+color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, int i,
+                int j, int s, TraceLog *log) {
+    PathSample sample = {i, j, s, settings->path.seed};
+    Path path = {scene,     settings, log,         sample,      0, {0, 0, 0},
+                 {1, 1, 1}, *primary, kFromTheEye, RAY_PRIMARY, 0};
+    std::vector<PathNode> nodes;
+    int parent = log->current;
+    for (int number = 1; number <= settings->depth; number++, path.bounce++) {
+        CountRay(path.kind, &log->stats);
+        int node = RecordRay(path.kind, &path.ray, log);
+        if (node >= 0)
+            nodes.push_back({node, path.light, path.through});
+        RayHit hit;
+        bool found =
+            FindNearestHitFrom(scene, settings->methods, &path.ray, &path.start, kInfinity, &hit);
+        if (node >= 0 && ((*log->tree)[node].hit = found))
+            (*log->tree)[node].record = hit;
+        if (!found) {
+            path.light = path.light + path.through * scene->background;
+            break;
+        }
+        const Material *m = &scene->materials[hit.material];
+        if (Emits(m))
+            path.light = path.light + EmissionWeight(&path, &hit) * (path.through * m->emit);
+        log->current = node;
+        if (number == settings->depth || !Bounce(&path, &hit, m) ||
+            (!settings->path.noRoulette && number >= 2 && !Survives(&path)))
+            break;
+    }
+    log->current = parent;
+    if (log->tree)
+        FinishTree(&path, nodes);
+    return path.light;
+}

@@ -1,0 +1,281 @@
+// tests/test_path.cpp -- `shading path`: predictions worked out by hand, and Monte Carlo error.
+//
+// Three scenes have exact answers: a diffuse sphere in a white furnace (every path returns rho),
+// a diffuse wall under one point light (rho / pi I cos / r^2, nothing else), and the inside of
+// a closed emitting sphere (Le / (1 - rho) in expectation, exactly a geometric sum under a fixed
+// bounce cap). The rest are statistical: the tests derive their tolerance from the sample count.
+#include "test.h"
+
+#include <cmath>
+#include <string>
+
+static const bool kDouble = sizeof(real) == sizeof(double);
+static const double kPi = 3.14159265358979323846;
+
+// A path-traced scene of size n x n, the camera at the origin looking down -z.
+static Scene PathScene(int n) {
+    Scene scene;
+    InitScene(&scene);
+    scene.width = scene.height = n;
+    scene.shading = SHADING_PATH;
+    scene.depth = 1000;
+    return scene;
+}
+
+static RenderSettings PathSettings(const Scene *scene, int spp, PathMethods path) {
+    RenderSettings s = TestSettings(scene);
+    s.samplesPerPixel = spp;
+    s.path = path;
+    PlanRender(scene, &s);
+    return s;
+}
+
+// The pixel's linear light (before the sRGB curve), with its rays counted.
+static color Pixel(const Scene *scene, const RenderSettings *s, int i, int j, RayStats *stats) {
+    return RenderPixel(scene, s, i, j, stats);
+}
+
+// White furnace: a diffuse sphere of reflectance rho under a background of 1. A path meets the
+// sphere, scatters (with cosine sampling its throughput becomes rho, exactly: the cosine and the
+// density cancel) and escapes (a sphere is convex), bringing back 1: every sample is rho.
+static void TestWhiteFurnace() {
+    Scene scene = PathScene(9);
+    scene.background = {1, 1, 1};
+    color rho = {real(0.3), real(0.5), real(0.8)};
+    scene.materials.push_back(Matte("grey", rho));
+    scene.spheres.push_back({{0, 0, -4}, real(1.5), 0});
+    for (int roulette = 0; roulette < 2; roulette++) {
+        RenderSettings s = PathSettings(&scene, 1, {SCATTER_COSINE, LIGHTS_MIS, roulette == 1, 0});
+        RayStats stats = {};
+        bool exact = true;
+        for (int j = 2; j <= 6; j++)
+            for (int i = 2; i <= 6; i++) {
+                color c = Pixel(&scene, &s, i, j, &stats);
+                exact = exact && c.x == rho.x && c.y == rho.y && c.z == rho.z;
+            }
+        CHECK(exact, "white furnace: every path on the sphere brings back exactly rho");
+        CHECK(stats.diffuse == stats.primary,
+              "and every path scatters once and escapes: one diffuse ray a primary ray");
+        s = PathSettings(&scene, 8, {SCATTER_COSINE, LIGHTS_MIS, roulette == 1, 0});
+        s.sampling = SAMPLES_JITTER;
+        color c = Pixel(&scene, &s, 4, 4, &stats);
+        CHECK_NEAR(c.z, rho.z, 8 * kRelTol, "8 jittered samples average to rho (but rounding)");
+    }
+    RenderSettings s = PathSettings(&scene, 1, {});
+    RayStats stats = {};
+    color corner = Pixel(&scene, &s, 0, 0, &stats);
+    CHECK(corner.x == 1 && corner.y == 1 && corner.z == 1, "the background itself is 1");
+}
+
+// A diffuse wall z = -4 under a point light of intensity I at (0, 0, -2): the centre pixel's
+// ray (33 x 33, pixel 16) meets the wall at (0, 0, -4), 2 from the light, head on: radiance
+// rho / pi * I / 4. The scattered ray escapes into a black background: nothing else adds.
+static void TestWallUnderPointLight() {
+    Scene scene = PathScene(33);
+    real rho = real(0.5);
+    scene.materials.push_back(Matte("wall", {rho, rho, rho}));
+    scene.triangles.push_back({{-50, -50, -4}, {50, -50, -4}, {0, 50, -4}, 0});
+    scene.lights.push_back({{0, 0, -2}, {4, 4, 4}});
+    RenderSettings s = PathSettings(&scene, 4, {});
+    s.sampling = SAMPLES_GRID;
+    s.samplesPerPixel = 1;
+    RayStats stats = {};
+    color c = Pixel(&scene, &s, 16, 16, &stats);
+    double expected = 0.5 / kPi * 4 / 4;
+    CHECK_NEAR(c.x, expected, 8 * kRelTol * expected, "rho / pi * I cos / r^2 = 0.5 / pi");
+    // Another pixel: its ray from the camera, the hit predicted from the geometry
+    Ray ray;
+    GetCameraRay(&s.camera, 33, 33, {real(3.5), real(28.5)}, &ray);
+    double t = 4 / -(double)ray.dir.z;
+    double x = t * ray.dir.x, y = t * ray.dir.y, r2 = x * x + y * y + 4;
+    double cosTheta = 2 / std::sqrt(r2);
+    expected = 0.5 / kPi * 4 * cosTheta / r2;
+    c = Pixel(&scene, &s, 3, 28, &stats);
+    CHECK_NEAR(c.y, expected, 64 * kRelTol * expected,
+               "off-centre: rho / pi * I cos(theta) / r^2 at the hit the camera ray predicts");
+    CHECK(stats.primary == 2 && stats.shadow == 2 && stats.diffuse == 2,
+          "one shadow ray and one scattered ray a pixel, exactly");
+}
+
+// Inside a closed diffuse sphere of reflectance rho that emits Le: every ray meets the sphere,
+// so the light is Le (1 + rho + rho^2 + ...) = Le / (1 - rho). Under a cap of k rays a path,
+// scattered rays only and no roulette, it is exactly Le (1 + rho + ... + rho^(k-1)).
+static Scene InsideGlowingSphere(real rho, real emit) {
+    Scene scene = PathScene(8);
+    Material m = Matte("glow", {rho, rho, rho});
+    m.emit = {emit, emit, emit};
+    scene.materials.push_back(m);
+    scene.spheres.push_back({{0, 0, 0}, 10, 0});
+    return scene;
+}
+
+static void TestInsideGlowingSphere() {
+    Scene scene = InsideGlowingSphere(real(0.5), 1);
+    for (int k : {1, 3, 8}) {
+        scene.depth = k;
+        RenderSettings s = PathSettings(&scene, 2, {SCATTER_COSINE, LIGHTS_NONE, true, 0});
+        RayStats stats = {};
+        color c = Pixel(&scene, &s, 3, 4, &stats);
+        double expected = (1 - std::pow(0.5, k)) / 0.5;
+        CHECK_NEAR(c.x, expected, 8 * kRelTol,
+                   "cap of " + std::to_string(k) + " rays: Le (1 + rho + ... + rho^(k-1))");
+    }
+    // Unbiased methods, no cap to speak of: the mean of 64 pixels within 4 standard errors
+    for (LightMethod lights : {LIGHTS_MIS, LIGHTS_NEE, LIGHTS_NONE}) {
+        scene.depth = 1000;
+        RenderSettings s = PathSettings(&scene, 16, {SCATTER_COSINE, lights, false, 0});
+        double sum = 0, sum2 = 0;
+        RayStats stats = {};
+        for (int j = 0; j < 8; j++)
+            for (int i = 0; i < 8; i++) {
+                double v = Pixel(&scene, &s, i, j, &stats).x;
+                sum += v, sum2 += v * v;
+            }
+        double mean = sum / 64, error = std::sqrt((sum2 / 64 - mean * mean) / 63);
+        CHECK(std::fabs(mean - 2) <= 4 * error + 1e-6,
+              "roulette: the mean light inside is Le / (1 - rho) = 2, within 4 standard errors (" +
+                  std::to_string(mean) + " +- " + std::to_string(error) + ")");
+        CHECK(error > 0, "and the estimate does vary: the paths are random");
+    }
+}
+
+// A small Cornell-like box: white, red and green walls, a lamp patch under the ceiling, a white
+// sphere, one point light; n x n pixels.
+static Scene SmallBox(int n) {
+    Scene scene = PathScene(n);
+    scene.depth = 10;
+    Material lamp = Matte("lamp", {0, 0, 0});
+    lamp.emit = {12, 12, 12};
+    scene.materials = {Matte("white", {real(0.7), real(0.7), real(0.7)}),
+                       Matte("red", {real(0.6), real(0.05), real(0.05)}),
+                       Matte("green", {real(0.1), real(0.45), real(0.15)}), lamp};
+    auto quad = [&](vec3 a, vec3 b, vec3 c, vec3 d, int m) {
+        scene.triangles.push_back({a, b, c, m});
+        scene.triangles.push_back({a, c, d, m});
+    };
+    quad({-1, -1, -2}, {1, -1, -2}, {1, -1, -4}, {-1, -1, -4}, 0); // floor
+    quad({-1, 1, -2}, {-1, 1, -4}, {1, 1, -4}, {1, 1, -2}, 0);     // ceiling
+    quad({-1, -1, -4}, {1, -1, -4}, {1, 1, -4}, {-1, 1, -4}, 0);   // back
+    quad({-1, -1, -2}, {-1, -1, -4}, {-1, 1, -4}, {-1, 1, -2}, 1); // left
+    quad({1, -1, -2}, {1, 1, -2}, {1, 1, -4}, {1, -1, -4}, 2);     // right
+    real y = real(0.99);
+    quad({real(-0.3), y, real(-2.7)}, {real(0.3), y, real(-2.7)}, {real(0.3), y, real(-3.3)},
+         {real(-0.3), y, real(-3.3)}, 3);
+    scene.spheres.push_back({{real(-0.3), real(-0.6), real(-3.2)}, real(0.4), 0});
+    scene.lights.push_back({{real(0.5), real(0.5), real(-2.5)}, {real(0.3), real(0.3), real(0.3)}});
+    return scene;
+}
+
+// The linear light of every pixel, averaged over the channels.
+static std::vector<double> Light(const Scene *scene, int spp, PathMethods path) {
+    RenderSettings s = PathSettings(scene, spp, path);
+    s.sampling = SAMPLES_JITTER;
+    std::vector<double> v;
+    RayStats stats = {};
+    for (int j = 0; j < scene->height; j++)
+        for (int i = 0; i < scene->width; i++) {
+            color c = Pixel(scene, &s, i, j, &stats);
+            v.push_back((c.x + c.y + c.z) / 3);
+        }
+    return v;
+}
+
+static double Rmse(const std::vector<double> &a, const std::vector<double> &b) {
+    double sum = 0;
+    for (size_t k = 0; k < a.size(); k++)
+        sum += (a[k] - b[k]) * (a[k] - b[k]);
+    return std::sqrt(sum / a.size());
+}
+
+// Monte Carlo error falls as 1 / sqrt(N): each fourfold of samples halves the RMSE. Inside the
+// glowing sphere every pixel's exact answer is 2 and no edge is in view, so all the error is
+// the paths' noise.
+static void TestConvergence() {
+    Scene scene = InsideGlowingSphere(real(0.5), 1);
+    scene.width = scene.height = 16;
+    std::vector<double> exact(256, 2.0);
+    double e16 = Rmse(Light(&scene, 16, {}), exact);
+    double e64 = Rmse(Light(&scene, 64, {}), exact);
+    double e256 = Rmse(Light(&scene, 256, {}), exact);
+    CHECK(e16 / e64 > 1.6 && e16 / e64 < 2.5,
+          "RMSE 16 -> 64 samples falls by about 2 (" + std::to_string(e16 / e64) + ")");
+    CHECK(e64 / e256 > 1.6 && e64 / e256 < 2.5,
+          "RMSE 64 -> 256 samples falls by about 2 (" + std::to_string(e64 / e256) + ")");
+}
+
+// Every method estimates the same light: for each pair, the per-pixel differences average to 0
+// within 4 standard errors of their mean.
+static void TestMethodsAgree() {
+    Scene scene = SmallBox(10);
+    std::vector<double> base = Light(&scene, 256, {SCATTER_COSINE, LIGHTS_MIS, false, 1});
+    const PathMethods others[] = {{SCATTER_UNIFORM, LIGHTS_MIS, false, 2},
+                                  {SCATTER_COSINE, LIGHTS_NEE, false, 3},
+                                  {SCATTER_COSINE, LIGHTS_NONE, false, 4},
+                                  {SCATTER_UNIFORM, LIGHTS_NONE, true, 5}};
+    const char *names[] = {"uniform sampling", "NEE without MIS", "no NEE",
+                           "uniform, no NEE, no roulette"};
+    for (int k = 0; k < 4; k++) {
+        std::vector<double> other = Light(&scene, 256, others[k]);
+        double sum = 0, sum2 = 0, n = (double)base.size();
+        for (size_t p = 0; p < base.size(); p++) {
+            double d = other[p] - base[p];
+            sum += d, sum2 += d * d;
+        }
+        double mean = sum / n, error = std::sqrt((sum2 / n - mean * mean) / (n - 1));
+        CHECK(std::fabs(mean) <= 4 * error,
+              std::string(names[k]) + " agrees with cosine + MIS: mean difference " +
+                  std::to_string(mean) + " within 4 x " + std::to_string(error));
+    }
+}
+
+// The same bytes on 1 and 2 threads; exact ray counts where they are predictable.
+static void TestThreadsAndCounts() {
+    Scene scene = SmallBox(16);
+    RenderSettings s = PathSettings(&scene, 8, {});
+    Image one, two;
+    RayStats a = {}, b = {};
+    s.threads = 1;
+    Render(&scene, &s, &one, &a);
+    s.threads = 2;
+    Render(&scene, &s, &two, &b);
+    CHECK(one.pixels == two.pixels && a.diffuse == b.diffuse && a.shadow == b.shadow,
+          "path tracing: the same image bytes and ray counts on 1 and 2 threads");
+    // A cap of 2 rays: every primary ray meets a wall (the box is closed but for the front,
+    // which the camera looks through), adds 1 shadow ray for the point light and 1 for an
+    // emitter, and scatters once
+    scene.depth = 2;
+    RayStats c = {};
+    RenderSettings capped = PathSettings(&scene, 1, {SCATTER_COSINE, LIGHTS_MIS, true, 0});
+    Render(&scene, &capped, &one, &c);
+    uint64_t diffuseHits = 0; // pixels whose centre sees a diffuse wall, not the lamp
+    for (int j = 0; j < 16; j++)
+        for (int i = 0; i < 16; i++) {
+            Ray ray;
+            RayHit hit;
+            GetCameraRay(&capped.camera, 16, 16, {i + real(0.5), j + real(0.5)}, &ray);
+            diffuseHits += FindNearestHit(&scene, kRobustMethods, &ray, 0, kInfinity, &hit) &&
+                           hit.material != 3;
+        }
+    CHECK(c.diffuse == diffuseHits && diffuseHits > 200,
+          "a cap of 2 rays: one scattered ray for each pixel that sees a diffuse surface");
+    CHECK(c.shadow <= 2 * 256 && c.shadow >= 256, "at most 2 shadow rays a pixel");
+    // No diffuse surface: a mirror box casts no scattered rays
+    Scene mirrors = SmallBox(8);
+    for (Material &m : mirrors.materials)
+        m.mirror = 1;
+    RayStats d = {};
+    RenderSettings ms = PathSettings(&mirrors, 1, {});
+    Render(&mirrors, &ms, &one, &d);
+    CHECK(d.diffuse == 0 && d.shadow == 0 && d.reflection > 0,
+          "mirrors only: no scattered rays, no shadow rays, only reflections");
+    CHECK(ms.effects.indirect == false, "and the plan says no indirect light");
+}
+
+void TestPath() {
+    TestWhiteFurnace();
+    TestWallUnderPointLight();
+    TestInsideGlowingSphere();
+    TestConvergence();
+    TestMethodsAgree();
+    TestThreadsAndCounts();
+}
