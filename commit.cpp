@@ -161,8 +161,8 @@ static int Partition(Builder *b, int begin, int end, const Box *node, int depth)
     for (int k = 0; k < 3 && depth < kMaxSahDepth; k++) {
         real extent = centres.hi[k] - centres.lo[k];
         int split = 0;
-        if (!(extent > 0) || !std::isfinite(extent))
-            continue;
+        if (!(extent > 0) || !std::isfinite(extent) || !std::isfinite(kBins / extent))
+            continue; // (a spread of 1e-308 would make the bins' scale infinite: the median)
         real cost = BestSplit(&b->items[begin], n, k, centres.lo[k], kBins / extent, node, &split);
         if (cost < best)
             best = cost, bestBin = split, axis = k, cmin = centres.lo[k], scale = kBins / extent;

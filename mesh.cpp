@@ -14,9 +14,10 @@
 #include <sys/stat.h>
 
 // The most vertices one mesh may hold while it is read: a vertex is 3 reals (24 bytes in
-// double), so this is at most 480 MB, freed when the file is read. A closed mesh has about half
-// as many vertices as triangles, so a file the scene's shape limit accepts is not refused here.
-static const size_t kMaxMeshVertices = 20000000;
+// double), so this is at most 96 MB (twice that while the vector grows), freed when the file is
+// read. A closed mesh has about half as many vertices as triangles, so a file the scene's shape
+// limit accepts is not refused here.
+static const size_t kMaxMeshVertices = 4000000;
 
 static bool MeshFail(const char *meshName, int line, const std::string &message,
                      std::string *error) {

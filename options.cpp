@@ -39,8 +39,9 @@ const char *kUsage =
     "                           bound, ignore hits closer than E (1e-4), or skip the shape\n"
     "  --camera-ray eye|slides  primary rays from the eye, or from the screen with unit length\n"
     "  --fresnel exact|schlick  how much glass reflects\n"
-    "  --layout auto|list|bvh   how the triangles are searched: a BVH from 32 triangles on\n"
-    "                           (auto, default), one list, or a BVH; the answers are the same\n"
+    "  --layout auto|list|bvh   how the watertight test searches the triangles: a BVH from 32\n"
+    "                           triangles on (auto, default), one list, or a BVH; the answers\n"
+    "                           are the same\n"
     "  --scatter cosine|uniform `shading path`: diffuse directions drawn by cos(theta) (default)\n"
     "                           or uniformly over the hemisphere\n"
     "  --lights mis|nee|none    `shading path`: how emitting shapes are found: sampled and\n"
@@ -246,6 +247,12 @@ static bool CheckCombinations(const Options *opt, const std::string &seen, std::
     int modes = opt->probeRay + !opt->raysFile.empty() + opt->pixel + opt->compare + opt->view;
     if (modes > 1) {
         *error = "choose one of --ray, --rays, --pixel, --view and --compare";
+        return false;
+    }
+    if (seen.find(" --layout ") != std::string::npos &&
+        ChosenMethods(opt).triangle != TRIANGLE_WATERTIGHT) {
+        *error = "--layout goes with the watertight triangle test: the handouts' triangle tests "
+                 "look at every triangle, as written";
         return false;
     }
     if (!opt->output.empty() && (opt->probeRay || opt->pixel || !opt->raysFile.empty())) {

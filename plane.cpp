@@ -201,7 +201,7 @@ struct Window {
 // Almost every hit is decided here, with no division.
 static inline bool WellInside(const PlaneProblem *p, double t, const Window *w) {
     const Box *box = w->box;
-    double pad = 0.5 * (double)kBoxAllowance * ((double)box->size + MaxComponent(w->ray->origin));
+    double pad = 0.5 * ((double)kBoxAllowance * box->size + OriginPad(w->ray));
     const double q[3] = {p->origin.x + t * p->dir.x, p->origin.y + t * p->dir.y,
                          p->origin.z + t * p->dir.z};
     for (int i = 0; i < 3; i++)
@@ -235,9 +235,25 @@ static inline bool IntoWindow(const PlaneProblem *p, Window *w, PlaneT *plane) {
 // left it, does not hit it again. Tier 1's t decides alone only where its bound puts it clearly
 // outside (tMin, tMax), or clearly inside and within kPlainRelativeError of itself: a long
 // triangle's plain t can be off by far more than rounding, enough to put a floor behind a shape
-// just beyond it. Everything else goes to tier 2. Both tiers' t are kept in the triangle's
-// window (IntoWindow); moving t there changes it by at most as much as it changes t's bound, so
-// tier 1's early answers stay right.
+// just beyond it. Everything else, and every triangle whose bound is not sound (FirstOrderHolds),
+// goes to tier 2. Both tiers' t are kept in the triangle's window (IntoWindow); moving t there
+// changes it by at most as much as it changes t's bound, so tier 1's early answers stay right.
+// Whether tier 1's bound can be believed: being first order, it leaves out products of two
+// errors, which is sound only while each error is small against what it is an error of. With
+// the normal known to 2^-10 of its length, and n.d to 2^-10 of its value (counting both the
+// rounding of the dot product and the normal's own error, which a ray grazing the plane feels
+// in full), what is left out is at most about 2^-9 of what is kept, which PlaneError's factor
+// of 2 covers many times over. A triangle whose corners are nearly in a line, or a ray that all
+// but skims its plane, fails this: its plain t can be off by far more than the bound says.
+static bool FirstOrderHolds(const PlaneProblem *p, double denominator) {
+    const double kSmall = 1.0 / 1024;
+    dvec3 absN = AbsD(p->n), absD = AbsD(p->dir), eNormal = Scale(GammaD(5), p->nTerms);
+    double eD = GammaD(3) * DotD(absN, absD) + DotD(eNormal, absD);
+    return std::max({eNormal.x, eNormal.y, eNormal.z}) <=
+               kSmall * std::max({absN.x, absN.y, absN.z}) &&
+           eD <= kSmall * std::fabs(denominator);
+}
+
 static bool FindPlaneT(const PlaneProblem *p, Window *w, real tMin, real tMax, PlaneT *plane) {
     dvec3 toA = Sub(p->a, p->origin);
     double denominator = DotD(p->n, p->dir);
@@ -247,9 +263,15 @@ static bool FindPlaneT(const PlaneProblem *p, Window *w, real tMin, real tMax, P
     *plane = {t, PlainError(p, toA, t, denominator)};
     if (!IntoWindow(p, w, plane))
         return false;
-    if (!(plane->t - plane->error < (double)tMax) || !(plane->t + plane->error > (double)tMin))
+    // Too far to count, whichever tier decides: tier 2's t lies within tier 1's bound of the
+    // exact t, so within twice the bound of tier 1's (its own bound being the smaller where it
+    // is taken). Only where the bound holds: a triangle's answer must never depend on tMax, or
+    // the list and the BVH, which test it against different tMax, would differ.
+    bool trusted = FirstOrderHolds(p, denominator);
+    if (trusted && (!(plane->t - 2 * plane->error < (double)tMax) ||
+                    !(plane->t + 2 * plane->error > (double)tMin)))
         return false;
-    if (!(plane->t - plane->error > 0) ||
+    if (!trusted || !(plane->t - plane->error > 0) ||
         plane->error > kPlainRelativeError * std::fabs(plane->t)) {
         *plane = WidePlaneT(p);
         if (!IntoWindow(p, w, plane))

@@ -503,14 +503,17 @@ const real kBoxAllowance = 128 * kUnitRoundoff;
 // origin's size, and which end of each slab the ray meets first (the sign of 1/d).
 struct SlabRay {
     vec3 origin, inverse;
-    real originPad;   // kBoxAllowance * largest |origin component|
+    real originPad;   // OriginPad: the widening that comes with the ray
     bool backward[3]; // 1/d < 0 on that axis: the ray meets hi before lo
 };
+// The widening that comes with the ray: kBoxAllowance of its origin's size, and 4 times the
+// smallest normal number, which stands in for sizes whose allowance would underflow (the
+// rounding of numbers below it is absolute, 2^-1074 in double, far below this floor).
+inline real OriginPad(const Ray *ray) {
+    return kBoxAllowance * MaxComponent(ray->origin) + 4 * std::numeric_limits<real>::min();
+}
 inline SlabRay MakeSlabRay(const Ray *ray) {
-    SlabRay r = {ray->origin,
-                 {1 / ray->dir.x, 1 / ray->dir.y, 1 / ray->dir.z},
-                 kBoxAllowance * MaxComponent(ray->origin),
-                 {}};
+    SlabRay r = {ray->origin, {1 / ray->dir.x, 1 / ray->dir.y, 1 / ray->dir.z}, OriginPad(ray), {}};
     r.backward[0] = std::signbit(r.inverse.x), r.backward[1] = std::signbit(r.inverse.y);
     r.backward[2] = std::signbit(r.inverse.z);
     return r;

@@ -261,6 +261,84 @@ static void TestEditedSceneIsNotStale() {
     CHECK(!copy.layout.committed, "a copy of a committed scene starts uncommitted");
 }
 
+// Triangles of every shape at once: corners drawn from a small shared pool (so slivers, nearly
+// collinear corners, shared edges and repeated corners are common) with sizes spread over 16
+// orders of magnitude, at the ends of the range; rays aimed at corners and edge midpoints. This
+// is where a triangle's answer depending on tMax (a bound that does not hold for a nearly
+// degenerate triangle or a grazing ray) would show as a list and a BVH that disagree.
+static int MixedSizeDifferences(real scale, uint64_t seed) {
+    TestRng rng = {seed};
+    auto coordinate = [&]() {
+        real size = real(std::pow(10.0, 16 * (double)Uniform(&rng) - 8)) * scale;
+        return (Uniform(&rng) - real(0.5)) * size;
+    };
+    std::vector<vec3> pool;
+    for (int k = 0; k < 40; k++)
+        pool.push_back({coordinate(), coordinate(), coordinate()});
+    Scene scene = WallScene();
+    for (int k = 0; k < 120; k++) {
+        auto pick = [&]() { return pool[(size_t)(Uniform(&rng) * pool.size())]; };
+        scene.triangles.push_back({pick(), pick(), pick(), 0});
+    }
+    Layouts l;
+    MakeLayouts(scene, &l);
+    int differ = 0;
+    for (int k = 0; k < 600; k++) {
+        vec3 o = {coordinate(), coordinate(), coordinate()};
+        const Triangle &t = scene.triangles[k % scene.triangles.size()];
+        vec3 target = k % 2 ? t.a : real(0.5) * (t.a + t.c);
+        Ray ray = {o, target - o};
+        if (MaxComponent(ray.dir) > 0)
+            differ += !SameAnswers(&l, &ray, 0, kInfinity);
+    }
+    return differ;
+}
+
+static void TestMixedSizes() {
+    const double scales[] = {1e-300, 1e-10, 1, 1e10, 1e290};
+    const double floatScales[] = {1e-30, 1e-5, 1, 1e5, 1e28};
+    for (int k = 0; k < 5; k++) {
+        real scale = real(kDouble ? scales[k] : floatScales[k]);
+        char what[120];
+        snprintf(what, sizeof what, "slivers and mixed sizes at scale %g: the same bits every way",
+                 (double)scale);
+        CHECK(MixedSizeDifferences(scale, 100 + k) == 0, what);
+    }
+    // Two triangles, the second a sliver whose plain t is off by far more than its first-order
+    // bound: both orders give the sliver, the nearer (double: float rounds the corners to
+    // another pair of triangles)
+    Scene scene = WallScene();
+    Triangle a = {
+        {real(-0.058541184133933499), real(0.0053882262489025421), real(0.05784944771382295)},
+        {real(-61.008546702020269), real(57.620696045508524), real(36.852868349216862)},
+        {real(289080.77327381348), real(-249071.57387850736), real(-237605.06619748232)},
+        0};
+    Triangle b = {
+        {real(-1.1338058849555787e-05), real(1.7801241128182465e-05), real(2.4170658167533157e-06)},
+        {real(-59.747569807499495), real(56.429742296509708), real(36.091161611625438)},
+        {real(-66.875450309011498), real(63.161805383928524), real(40.396834956109394)},
+        0};
+    Ray ray = {{real(-73.694706823406563), real(69.602484473112128), real(44.516151654046155)},
+               {real(61.008080141975611), real(-57.620738004334555), real(-36.852932450658692)}};
+    RayHit ab, ba;
+    scene.triangles = {a, b};
+    bool foundAb = FindNearestHit(&scene, kRobustMethods, &ray, 0, kInfinity, &ab);
+    scene.triangles = {b, a};
+    bool foundBa = FindNearestHit(&scene, kRobustMethods, &ray, 0, kInfinity, &ba);
+    CHECK(!kDouble || (foundAb && foundBa && ab.index == 1 && ba.index == 0 && ab.t == ba.t),
+          "an answer does not depend on the nearest hit so far: the sliver in both orders");
+}
+
+// A BVH over a mesh a thousand times smaller than the smallest normal double's square root:
+// the bins' scale would be infinite; the build splits at the median instead (no crash).
+static void TestTinyMeshBuild() {
+    real scale = real(kDouble ? 1e-306 : 1e-36);
+    Scene ball = WallScene();
+    AddOctasphere(&ball, {0, 0, -5 * scale}, scale, 3);
+    CHECK(CountDifferences(ball, {0, 0, -5 * scale}, 3 * scale, 100, 9) == 0,
+          "a 512-triangle sphere of radius 1e-306 (float 1e-36): built, and the same bits");
+}
+
 void TestLayout() {
     TestSameHitsEveryLayout();
     TestSameHitsInLongBoxes();
@@ -268,4 +346,6 @@ void TestLayout() {
     TestHardCasesCommitted();
     TestSameImages();
     TestEditedSceneIsNotStale();
+    TestMixedSizes();
+    TestTinyMeshBuild();
 }
