@@ -236,7 +236,8 @@ static const struct {
                 {"--methods", 1}, {"--self-hit", 1},  {"--camera-ray", 1}, {"--fresnel", 1},
                 {"--view", 1},    {"--ray", 6},       {"--rays", 1},       {"--pixel", 2},
                 {"--compare", 2}, {"--tolerance", 1}, {"--stats", 0},      {"--help", 0},
-                {"-h", 0},        {"--version", 0},   {"--layout", 1}};
+                {"-h", 0},        {"--version", 0},   {"--layout", 1},     {"--scatter", 1},
+                {"--lights", 1},  {"--roulette", 1},  {"--seed", 1}};
 
 // What must not be given together: `seen` lists the options given, each between spaces.
 static bool CheckCombinations(const Options *opt, const std::string &seen, std::string *error) {

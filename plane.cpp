@@ -265,11 +265,14 @@ static bool FindPlaneT(const PlaneProblem *p, Window *w, real tMin, real tMax, P
         return false;
     // Too far to count, whichever tier decides: tier 2's t lies within tier 1's bound of the
     // exact t, so within twice the bound of tier 1's (its own bound being the smaller where it
-    // is taken). Only where the bound holds: a triangle's answer must never depend on tMax, or
-    // the list and the BVH, which test it against different tMax, would differ.
+    // is taken). Behind the origin one bound is enough: tier 2's t is then within its own bound
+    // of 0, which the last test below refuses. Only where the bound holds: a triangle's answer
+    // must never depend on tMax, or the list and the BVH, which test it against different tMax,
+    // would differ.
     bool trusted = FirstOrderHolds(p, denominator);
-    if (trusted && (!(plane->t - 2 * plane->error < (double)tMax) ||
-                    !(plane->t + 2 * plane->error > (double)tMin)))
+    bool beyond = !(plane->t - 2 * plane->error < (double)tMax);
+    bool behind = !(plane->t + plane->error > 0) || !(plane->t + 2 * plane->error > (double)tMin);
+    if (trusted && (beyond || behind))
         return false;
     if (!trusted || !(plane->t - plane->error > 0) ||
         plane->error > kPlainRelativeError * std::fabs(plane->t)) {

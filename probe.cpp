@@ -118,6 +118,9 @@ std::string PixelTreeJson(const Scene *scene, const RenderSettings *settings, in
     Ray ray;
     GetCameraRay(&settings->camera, settings->width, settings->height, SamplePosition(x, y, 0, 1),
                  &ray);
-    TraceRay(scene, settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
+    if (scene->shading == SHADING_PATH) // the centre's first path (sample 0)
+        TracePath(scene, settings, &ray, x, y, 0, &log);
+    else
+        TraceRay(scene, settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
     return NodeJson(scene, tree, 0);
 }

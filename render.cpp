@@ -146,12 +146,52 @@ static color AdaptivePixel(const Scene *scene, const RenderSettings *settings, i
     return (real(1) / n) * sum;
 }
 
+// Adaptive sampling for `shading path`: rounds of kPathRound samples, each at a random point of
+// the pixel, until the estimated error of the pixel's mean (the standard error of its samples'
+// brightness), as the sRGB curve will show it, is below kPathTolerance of an 8-bit step; at
+// least kPathFirst samples, at most samplesPerPixel. A pixel whose paths agree (the background,
+// a surface lit straight on) stops early; a noisy one takes them all. (Stopping on the samples'
+// own spread leans a little toward samples that happened to agree: a bias far below the error
+// it stops at.)
+const int kPathFirst = 16, kPathRound = 8;
+const double kPathTolerance = 2.0 / 255;
+
+// How much the sRGB curve magnifies a small change of linear light m.
+static double SrgbSlope(double m) {
+    if (m <= 0.0031308)
+        return 12.92;
+    return 1.055 / 2.4 * std::pow(std::min(m, 1.0), 1 / 2.4 - 1);
+}
+
+static color AdaptivePathPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
+                               TraceLog *log) {
+    int most = settings->samplesPerPixel, n = 0;
+    color sum = {0, 0, 0};
+    double brightness = 0, squares = 0;
+    while (n < most) {
+        for (int k = 0; k < kPathRound && n < most; k++, n++) {
+            vec2 u = HashPoint(i, j, n, 2);
+            color c = TraceSample(scene, settings, {i + u.x, j + u.y}, i, j, n, log);
+            double y = ((double)c.x + c.y + c.z) / 3;
+            sum = sum + c, brightness += y, squares += y * y;
+        }
+        if (n < kPathFirst)
+            continue;
+        double mean = brightness / n, variance = (squares / n - mean * mean) * n / (n - 1);
+        if (std::sqrt(std::max(0.0, variance) / n) * SrgbSlope(mean) <= kPathTolerance)
+            break;
+    }
+    return (real(1) / n) * sum;
+}
+
 color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
                   RayStats *stats) {
     TraceLog log = {RayStats{}, nullptr, -1, 0};
     int n = settings->samplesPerPixel;
     color result = {0, 0, 0};
-    if (settings->sampling == SAMPLES_ADAPTIVE && n > 5) {
+    if (settings->sampling == SAMPLES_ADAPTIVE && scene->shading == SHADING_PATH) {
+        result = AdaptivePathPixel(scene, settings, i, j, &log);
+    } else if (settings->sampling == SAMPLES_ADAPTIVE && n > 5) {
         result = AdaptivePixel(scene, settings, i, j, &log);
     } else {
         bool jitter = settings->sampling != SAMPLES_GRID && n > 1;

@@ -7,6 +7,8 @@
 #include "test.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 static const bool kDouble = sizeof(real) == sizeof(double);
@@ -271,6 +273,38 @@ static void TestThreadsAndCounts() {
     CHECK(ms.effects.indirect == false, "and the plan says no indirect light");
 }
 
+// The program: the path options, --stats and --pixel.
+static void TestPathProgram() {
+    char pattern[] = "/tmp/rt-path-XXXXXX";
+    const char *dir = mkdtemp(pattern);
+    CHECK(dir != nullptr, "a temporary directory for the path tracer's program tests");
+    if (!dir)
+        return;
+    std::string scene = "size 8 8\nshading path\nlight 0 0.5 -2 2 2 2\nmaterial lamp emit 3 3 3\n"
+                        "material white diffuse 0.7 0.7 0.7\n"
+                        "triangle -9 -1 -9 9 -1 -9 0 -1 9 white\nsphere 0 1.5 -4 0.5 lamp\n";
+    FILE *f = fopen((std::string(dir) + "/p.scene").c_str(), "w");
+    fputs(scene.c_str(), f);
+    fclose(f);
+    std::string err;
+    int status = RunRay(dir,
+                        "p.scene --spp 4 --scatter uniform --lights nee --roulette off "
+                        "--seed 3 --threads 1 --stats -o p.png",
+                        &err);
+    CHECK(status == 0 && err.find(" diffuse=") != std::string::npos &&
+              err.find("indirect") != std::string::npos,
+          "--scatter, --lights, --roulette, --seed: a render whose --stats counts diffuse rays "
+          "and names the indirect effect");
+    status = RunRay(dir, "p.scene --pixel 4 6", &err);
+    std::string tree = ReadFile(std::string(dir) + "/out.txt");
+    CHECK(status == 0 && tree.find("\"kind\":\"diffuse\"") != std::string::npos &&
+              tree.find("\"kind\":\"shadow\"") != std::string::npos,
+          "--pixel shows the path: a diffuse ray and shadow rays in the tree");
+    CHECK(RunRay(dir, "p.scene --lights some", &err) == 2, "--lights some: exit 2");
+    CHECK(system((std::string("rm -rf '") + dir + "'").c_str()) == 0,
+          "temporary directory removed");
+}
+
 void TestPath() {
     TestWhiteFurnace();
     TestWallUnderPointLight();
@@ -278,4 +312,5 @@ void TestPath() {
     TestConvergence();
     TestMethodsAgree();
     TestThreadsAndCounts();
+    TestPathProgram();
 }
