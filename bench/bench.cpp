@@ -13,6 +13,8 @@
 //                       the pictures of a fixed epsilon at the wrong scale
 //   bench layout DIR    render time against mesh size, list against BVH (layout.cpp):
 //                       DIR/layout.md and DIR/layout.svg
+//   bench path DIR      a path tracer's error against time, per method (path.cpp): DIR/path.md
+//                       (path_float.md from the float build), DIR/path_*.svg
 //   bench time PROGRAM ARGS...   runs PROGRAM once (its standard output thrown away, its
 //                       standard error passed on) and prints its whole-process wall time in ms:
 //                       from fork to the end of waitpid, so the clock includes starting and
@@ -277,6 +279,7 @@ int ReportMain(const std::string &dir); // report.cpp
 int RobustnessTables();                 // robustness.cpp
 int MethodsTable(const char *folder);   // methods.cpp
 int LayoutTable(const char *folder);    // layout.cpp
+int PathTable(const char *folder);      // path.cpp
 
 int main(int argc, char **argv) {
     std::string mode = argc > 1 ? argv[1] : "";
@@ -296,10 +299,12 @@ int main(int argc, char **argv) {
         return MethodsTable(argc == 3 ? argv[2] : nullptr);
     if (mode == "layout" && argc == 3)
         return LayoutTable(argv[2]);
+    if (mode == "path" && argc == 3)
+        return PathTable(argv[2]);
     if (mode != "rows" || argc != 3) {
         fprintf(stderr, "usage: bench rows DIR | bench report DIR | bench pngfloor RGB PNG | "
                         "bench time PROGRAM ARGS... | bench robustness | bench methods [DIR] | "
-                        "bench layout DIR\n");
+                        "bench layout DIR | bench path DIR\n");
         return 2;
     }
     for (const BenchScene &b : kScenes)

@@ -109,6 +109,35 @@ echo "  whole process: $(spread "$out/million.ms") ms (target: under 3,000), pea
 } >>"$report"
 echo "bench: meshes done" >&2
 
+# Path tracing: the Cornell box at 512 x 512, 64 spp on all cores, and path vertices a second a
+# thread (camera, scattered, mirror and glass rays: every ray that extends a path); then error
+# against time per method, in double and in float
+: >"$out/cornell"
+for k in 1 2 3; do
+    timed cornell ./ray scenes/cornell.scene -o "$out/cornell.png" --spp 64 --stats
+done
+vertices=$(sed -n 's/^rays: primary=\([0-9]*\) shadow=[0-9]* reflection=\([0-9]*\) refraction=\([0-9]*\) diffuse=\([0-9]*\).*/\1 \2 \3 \4/p' "$out/stats" | awk '{ print $1 + $2 + $3 + $4 }')
+build/double/rtbench path "$dir"
+build/float/rtbench path "$dir"
+{
+echo
+echo "## Path tracing (shading path)"
+echo
+echo "- scenes/cornell.scene, 512 x 512, 64 spp, $(nproc) threads: render $(spread "$out/cornell.render") ms (target: under 10,000);"
+echo "  $vertices path vertices: $(awk -v v="$vertices" -v t="$(median "$out/cornell.render")" -v n="$(nproc)" 'BEGIN { printf "%.2f", v / (t / 1000) / n / 1e6 }') million a second a thread (target: 5 or more)"
+echo
+echo "Error against time, 96 x 96, RMSE in 8-bit levels against 4,096 samples (path.md, path_float.md):"
+echo
+cat "$dir/path.md"
+echo
+echo "![Cornell box](path_cornell.svg) ![assignment](path_assignment.svg)"
+echo
+echo "Float:"
+echo
+cat "$dir/path_float.md"
+} >>"$report"
+echo "bench: path tracing done" >&2
+
 # What each effect costs: the same scene with one effect's keyword taken out
 cp scenes/test.scene scenes/effects.scene "$out/"
 sed 's/ mirror [0-9][0-9.]*//' scenes/test.scene >"$out/test_no_mirrors.scene"
