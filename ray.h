@@ -65,8 +65,8 @@ inline vec3 Abs(vec3 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)
 inline vec3 Max(vec3 a, vec3 b) {
     return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)};
 }
-// a.x, a.y or a.z for axis 0, 1, 2: an indexed load, not a chain of branches (the watertight
-// triangle test picks its axes per ray)
+// a.x, a.y or a.z for axis 0, 1, 2 (the boxes of the committed scene and the BVH go axis by
+// axis): an indexed load, not a chain of branches
 inline real Component(vec3 a, int axis) {
     const real c[3] = {a.x, a.y, a.z};
     return c[axis];

@@ -1,7 +1,9 @@
 // render.cpp -- the render loop: samples in each pixel, and every pixel on every core.
 //
-// One ray per pixel through its centre (the handout's method), or N samples per pixel on a
-// regular grid, jittered in its cells, or adaptively; the cameras' rays come from camera.cpp.
+// One ray per pixel through its centre (the handout's method), or N samples per pixel: on a
+// regular grid, jittered in its cells, or adaptively (by the colours and shapes the first five
+// meet, or, for `shading path`, by the pixel's own Monte Carlo error); the cameras' rays come
+// from camera.cpp.
 // Each pixel is computed the same way whichever thread takes it, so the image never depends on
 // the thread count; threads take whole rows from a shared counter, so no core waits while work
 // remains.

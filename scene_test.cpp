@@ -16,8 +16,10 @@ static void AddCheckerFloor(Scene *scene, real x0, real z0, real x1, real z1, re
             real za = z0 + (z1 - z0) * row / n, zb = z0 + (z1 - z0) * (row + 1) / n;
             int material = (row + col) % 2 ? dark : light;
             vec3 p00 = {xa, y, za}, p10 = {xb, y, za}, p01 = {xa, y, zb}, p11 = {xb, y, zb};
-            scene->triangles.push_back({p00, p01, p11, material});
-            scene->triangles.push_back({p00, p11, p10, material});
+            // wound so that (b - a) x (c - a) points up whichever way x and z run
+            bool up = (x1 - x0) * (z0 - z1) > 0;
+            scene->triangles.push_back({p00, up ? p11 : p01, up ? p01 : p11, material});
+            scene->triangles.push_back({p00, up ? p10 : p11, up ? p11 : p10, material});
         }
     }
 }
