@@ -13,7 +13,9 @@ RT_FLAGS = -std=c++17 -Wall -Wextra -ffp-contract=off -fno-math-errno -pthread -
 PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
 PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 
-CORE = geometry commit kernel handout watertight plane shade path camera render image text scene_file mesh probe views scene_default scene_test
+# Every scene_*.cpp but the reader is a scene built in C++ (README, "Writing a scene in C++").
+SCENES = $(filter-out scene_file,$(basename $(wildcard scene_*.cpp)))
+CORE = geometry commit kernel handout watertight plane shade path camera render image text scene_file mesh probe views $(SCENES)
 TESTS = $(basename $(notdir $(wildcard tests/test_*.cpp))) exercise hard_cases hard_cases_offset robust_scenes
 
 # Object lists for one build variant: $(call objs,DIR,NAMES)
@@ -47,7 +49,7 @@ build/float/run_tests: $(call objs,build/float/tests,$(TESTS)) $(FLOAT_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
 test: all build/double/run_tests build/float/run_tests
-	@sh tests/run.sh build/double/run_tests build/float/run_tests
+	@sh tests/run.sh build/double/run_tests build/float/run_tests tests/recipe.sh
 
 check: test
 

@@ -16,19 +16,33 @@
 #include <sys/stat.h>
 #include <thread>
 
+// The scenes built in C++ (the scene_*.cpp files, which the Makefile compiles, all of them), by
+// the name the command line gives them, and the image each writes by default. A scene of your
+// own: a builder in scene_NAME.cpp, its declaration in ray.h, and a line here.
+static const struct {
+    const char *name, *output;
+    void (*build)(Scene *scene);
+} kBuiltInScenes[] = {
+    {"default", "reference.png", BuildDefaultScene},
+    {"test", "test.png", BuildTestScene},
+};
+
+static bool IsBuiltIn(const std::string &name) {
+    for (const auto &b : kBuiltInScenes)
+        if (name == b.name)
+            return true;
+    return false;
+}
+
 // Loads the named built-in scene or a scene file, and picks the default output name.
 static bool LoadScene(const std::string &name, Scene *scene, std::string *defaultOutput,
                       std::string *error) {
-    if (name == "default") {
-        BuildDefaultScene(scene);
-        *defaultOutput = "reference.png";
-        return true;
-    }
-    if (name == "test") {
-        BuildTestScene(scene);
-        *defaultOutput = "test.png";
-        return true;
-    }
+    for (const auto &b : kBuiltInScenes)
+        if (name == b.name) {
+            b.build(scene);
+            *defaultOutput = b.output;
+            return true;
+        }
     std::string base = name.substr(name.find_last_of('/') + 1); // NAME.png for path/NAME.scene
     size_t dot = base.find_last_of('.');
     *defaultOutput = (dot == std::string::npos || dot == 0 ? base : base.substr(0, dot)) + ".png";
@@ -196,7 +210,7 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
                         ViewName(opt->viewKind) + ".png";
     std::string output = opt->output.empty() ? defaultOutput : opt->output, error;
     std::vector<std::string> inputs;
-    if (opt->scene != "default" && opt->scene != "test")
+    if (!IsBuiltIn(opt->scene))
         inputs.push_back(opt->scene);
     inputs.insert(inputs.end(), scene->meshFiles.begin(), scene->meshFiles.end());
     int status;
