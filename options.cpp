@@ -239,6 +239,42 @@ static const struct {
                 {"-h", 0},        {"--version", 0},   {"--layout", 1},     {"--scatter", 1},
                 {"--lights", 1},  {"--roulette", 1},  {"--seed", 1}};
 
+// Options that would change nothing in the mode chosen are errors, not silently ignored: a probe
+// asks about one ray (no image, no samples, no threads); --pixel shows the centre ray's tree (the
+// image's size and the depth matter, the samples do not); --compare reads two images; and where
+// the samples go (--aa) only matters when there are several (--spp N, N > 1).
+static bool CheckUnused(const Options *opt, const std::string &seen, std::string *error) {
+    struct Rule {
+        bool mode;
+        const char *name;
+        std::vector<const char *> unused;
+    };
+    const Rule rules[] = {
+        {opt->probeRay || !opt->raysFile.empty(),
+         opt->probeRay ? "--ray" : "--rays",
+         {"--size", "--spp", "--aa", "--threads", "--depth", "--view", "--stats", "--seed",
+          "--scatter", "--lights", "--roulette"}},
+        {opt->pixel, "--pixel", {"--spp", "--aa", "--threads", "--stats"}},
+        {opt->compare,
+         "--compare",
+         {"--size", "--spp", "--aa", "--threads", "--depth", "--methods", "--sphere", "--triangle",
+          "--self-hit", "--camera-ray", "--fresnel", "--layout", "--stats", "--seed", "--scatter",
+          "--lights", "--roulette"}},
+        {opt->spp == 1, "one sample a pixel", {"--aa"}},
+    };
+    for (const Rule &r : rules) {
+        if (!r.mode)
+            continue;
+        for (const char *option : r.unused)
+            if (seen.find(std::string(" ") + option + " ") != std::string::npos) {
+                *error = std::string(option) + " changes nothing with " + r.name +
+                         (r.mode && r.name[0] == 'o' ? " (give --spp N, N > 1)" : "");
+                return false;
+            }
+    }
+    return true;
+}
+
 // What must not be given together: `seen` lists the options given, each between spaces.
 static bool CheckCombinations(const Options *opt, const std::string &seen, std::string *error) {
     if (seen.find(" --tolerance ") != std::string::npos && !opt->compare) {
@@ -260,7 +296,7 @@ static bool CheckCombinations(const Options *opt, const std::string &seen, std::
         *error = "-o goes with a render, --view or --compare; probes print to standard output";
         return false;
     }
-    return true;
+    return CheckUnused(opt, seen, error);
 }
 
 bool ParseOptions(int argc, char **argv, Options *opt, std::string *error) {

@@ -171,6 +171,26 @@ static int Probe(const Options *opt, const Scene *scene, const RenderSettings *s
 }
 
 // The render settings the scene and the options choose.
+// A screen camera's edges fix its shape, so --size must keep it, or the pixels would not be
+// square and spheres would come out as eggs: W : H must be |h| : |v| to within 1 part in 256
+// (less than a pixel's width across 256 pixels). A perspective or lookat camera adapts its
+// screen to the image instead.
+static bool ScreenKeepsSquarePixels(const Options *opt, const Scene *scene, std::string *error) {
+    if (!opt->width || scene->camera.kind != CAMERA_SCREEN)
+        return true;
+    double h = SafeLength(scene->camera.horizontal), v = SafeLength(scene->camera.vertical);
+    double W = opt->width, H = opt->height ? opt->height : opt->width;
+    if (std::fabs(W * v - H * h) <= (W * v + H * h) / 512)
+        return true;
+    char text[200];
+    snprintf(text, sizeof text,
+             "--size %gx%g: the scene's screen camera is %g x %g, so its pixels would not be "
+             "square; give --size %gx%.0f",
+             W, H, h, v, W, std::round(W * v / h));
+    *error = text;
+    return false;
+}
+
 static RenderSettings ChosenSettings(const Options *opt, const Scene *scene) {
     RenderSettings settings;
     settings.width = opt->width ? opt->width : scene->width;
@@ -256,6 +276,10 @@ static int Run(int argc, char **argv) {
         return Compare(&opt);
     Scene scene;
     if (!LoadScene(opt.scene, &scene, &defaultOutput, &error)) {
+        fprintf(stderr, "ray: %s\n", error.c_str());
+        return 2;
+    }
+    if (!ScreenKeepsSquarePixels(&opt, &scene, &error)) {
         fprintf(stderr, "ray: %s\n", error.c_str());
         return 2;
     }

@@ -308,11 +308,13 @@ static bool ReadStatement(const Statement *st, Scene *scene, Declared *declared,
         return ReadLight(st, scene, error);
     if (k == "camera")
         return Once(st, &declared->camera, error) && ReadCamera(st, scene, error);
-    if (k == "size") {
-        if (!Once(st, &declared->size, error) || !Numbers(st, 1, 0, 3, v, error))
+    if (k == "size") { // `size W H`, or `size W` for a square image, as --size takes it
+        size_t total = st->tokens.size() == 2 ? 2 : 3;
+        if (!Once(st, &declared->size, error) || !Numbers(st, 1, 0, total, v, error) ||
+            !WholeNumber(st, 1, 1, 16384, &scene->width, error))
             return false;
-        return WholeNumber(st, 1, 1, 16384, &scene->width, error) &&
-               WholeNumber(st, 2, 1, 16384, &scene->height, error);
+        scene->height = scene->width;
+        return total == 2 || WholeNumber(st, 2, 1, 16384, &scene->height, error);
     }
     if (k == "depth")
         return Once(st, &declared->depth, error) && Numbers(st, 1, 0, 2, v, error) &&

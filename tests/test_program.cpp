@@ -5,6 +5,8 @@
 // status 2 (3 for I/O), one `ray: ` line, and no output file touched.
 #include "test.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -97,6 +99,8 @@ static const BadRun kBadRuns[] = {
     {"-o missing_dir/x.png", 3, "missing_dir/x.png"},
     {"--size 8 --size 9", 2, "--size given twice"},
     {"--tolerance 2", 2, "--tolerance goes with --compare"},
+    {"--aa jitter", 2, "--aa changes nothing with one sample a pixel"},
+    {"--methods handout --layout bvh", 2, "--layout goes with the watertight triangle test"},
 };
 
 static void TestBadInput(const std::string &dir) {
@@ -118,6 +122,22 @@ static void TestBadInput(const std::string &dir) {
         CHECK(ReadFile(dir + "/keep.png") == keep, name + ": the existing output is untouched");
     }
     std::string err;
+    // Options that would change nothing in the mode chosen are errors
+    const char *unused[][2] = {{"--ray 0 0 0 0 0 -1 --spp 4", "--spp changes nothing with --ray"},
+                               {"--pixel 1 1 --aa jitter", "--aa changes nothing with --pixel"},
+                               {"--compare a.png b.png --size 10", "--size changes nothing"}};
+    for (auto &u : unused)
+        CHECK(RunRay(dir, u[0], &err) == 2 && err.find(u[1]) != std::string::npos,
+              std::string("`ray ") + u[0] + "`: exit 2, \"" + u[1] + "\"");
+    // A screen camera keeps its shape: a --size of another shape would stretch the pixels
+    char cwd[4096];
+    std::string handout2 =
+        std::string(getcwd(cwd, sizeof cwd) ? cwd : ".") + "/scenes/handout2.scene";
+    CHECK(RunRay(dir, handout2 + " --size 300x300 -o sq.png", &err) == 2 &&
+              err.find("give --size 300x225") != std::string::npos,
+          "a 4 x 3 screen camera at --size 300x300: refused, with the size that keeps it");
+    CHECK(RunRay(dir, handout2 + " --size 80x60 -o ok.png", &err) == 0,
+          "and at --size 80x60, its own shape, rendered");
     CHECK(RunRay(dir, "--spp 0 -o fresh.png", &err) == 2 && !FileExists(dir + "/fresh.png"),
           "a failed run creates no output file");
     CHECK(RunRay(dir, "--help", &err) == 0 &&

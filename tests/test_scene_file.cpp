@@ -17,7 +17,7 @@ struct BadScene {
 static const BadScene kBadScenes[] = {
     {"bogus 1 2", 1, "unknown keyword 'bogus'"},
     {"Sphere 0 0 0 1 m", 1, "unknown keyword"}, // keywords are lower case
-    {"\n\n  size 512", 3, "missing number"},
+    {"\n\n  size", 3, "missing number"},
     {"size 512 512 3", 1, "extra value '3'"},
     {"size 0 512", 1, "between 1 and 16384"},
     {"size 16385 2", 1, "between 1 and 16384"},
@@ -111,6 +111,10 @@ static void TestSceneVariations() {
     if (!ok)
         return;
     CHECK(scene.width == 64 && scene.height == 32, "size 64 32 read through a tab");
+    Scene square;
+    CHECK(ParseSceneText("size 100\n", "s.scene", &square, &error) && square.width == 100 &&
+              square.height == 100,
+          "size 100: a square image of 100 x 100, as --size 100 makes one");
     CHECK_NEAR(scene.ambient, 0.2, kRelTol, "ambient +2e-1 is 0.2");
     const Material &m = scene.materials[0];
     CHECK(m.diffuse.x == real(0.5) && m.diffuse.y == 1 && m.diffuse.z == 0 &&
