@@ -279,6 +279,8 @@ static int Run(int argc, char **argv) {
         fprintf(stderr, "ray: %s\n", error.c_str());
         return 2;
     }
+    for (const std::string &warning : scene.warnings)
+        fprintf(stderr, "ray: %s\n", warning.c_str());
     if (!ScreenKeepsSquarePixels(&opt, &scene, &error)) {
         fprintf(stderr, "ray: %s\n", error.c_str());
         return 2;

@@ -243,6 +243,8 @@ struct Scene {
     std::vector<std::string> meshFiles; // the OBJ files `mesh` statements read, as opened: inputs
                                         // that an output must not replace
     SceneLayout layout; // set by CommitScene; the shape loop uses it only while it is current
+    std::vector<std::string> warnings; // what the reader found legal but probably not meant
+                                       // ("FILE:LINE: warning: ..."); main prints them
 };
 
 // ---- the numerical methods: robust, or the handouts' (geometry.cpp, handout.cpp, shade.cpp) --

@@ -26,9 +26,11 @@ struct Statement {
     std::vector<std::string> tokens;
 };
 
-// What has been declared once already (a second one is an error).
+// What has been declared once already (a second one is an error), and material properties that
+// only one shading uses, by line, for a warning once the shading is known.
 struct Declared {
     bool size, camera, ambient, shading, background, depth;
+    std::vector<std::pair<int, std::string>> shadingOnly; // line, "NAME: KEY"
 };
 
 void InitScene(Scene *scene) {
@@ -143,6 +145,11 @@ static bool ReadTriangle(const Statement *st, Scene *scene, std::string *error) 
     t.a = {v[0], v[1], v[2]};
     t.b = {v[3], v[4], v[5]};
     t.c = {v[6], v[7], v[8]};
+    vec3 n = Cross(t.b - t.a, t.c - t.a);
+    if (n.x == 0 && n.y == 0 && n.z == 0)
+        scene->warnings.push_back(std::string(st->file) + ":" + std::to_string(st->line) +
+                                  ": warning: this triangle has no area (its corners are on one "
+                                  "line), so no ray ever hits it");
     scene->triangles.push_back(t);
     return true;
 }
@@ -302,8 +309,13 @@ static bool ReadStatement(const Statement *st, Scene *scene, Declared *declared,
         return ReadTriangle(st, scene, error);
     if (k == "mesh")
         return ReadMesh(st, scene, error);
-    if (k == "material")
+    if (k == "material") {
+        for (const char *key : {"ambient", "specular", "emit"})
+            for (size_t t = 2; t < st->tokens.size(); t++)
+                if (st->tokens[t] == key)
+                    declared->shadingOnly.push_back({st->line, st->tokens[1] + ": " + key});
         return ReadMaterial(st, scene, error);
+    }
     if (k == "light")
         return ReadLight(st, scene, error);
     if (k == "camera")
@@ -366,6 +378,15 @@ static bool ParseSceneLines(FILE *file, const char *fileName, Scene *scene, std:
         if (ObjectCount(scene) > kMaxObjects)
             return Fail(&st, "too many objects (rt's limit is " + std::to_string(kMaxObjects) + ")",
                         error);
+    }
+    // Material properties the scene's shading does not use: legal, but probably not meant
+    for (const auto &[line, what] : declared.shadingOnly) {
+        bool emit = what.compare(what.size() - 4, 4, "emit") == 0;
+        bool used = emit ? scene->shading == SHADING_PATH : scene->shading == SHADING_PHONG;
+        if (!used)
+            scene->warnings.push_back(std::string(fileName) + ":" + std::to_string(line) +
+                                      ": warning: material " + what + " is used only by " +
+                                      (emit ? "shading path" : "shading phong"));
     }
     // The perspective camera's pixel counts follow the image size
     scene->camera.perspective.widthPixels = scene->width;

@@ -111,6 +111,22 @@ static void TestSceneVariations() {
     if (!ok)
         return;
     CHECK(scene.width == 64 && scene.height == 32, "size 64 32 read through a tab");
+    Scene warned;
+    CHECK(ParseSceneText("material m specular 0.5 10 ambient 1 1 1 emit 1 1 1\n"
+                         "triangle 0 0 0 1 1 1 2 2 2 m\ntriangle 0 0 0 1 0 0 0 1 0 m\n",
+                         "w.scene", &warned, &error) &&
+              warned.warnings.size() == 4 &&
+              warned.warnings[0].find("w.scene:2: warning: this triangle has no area") == 0 &&
+              warned.warnings[1] == "w.scene:1: warning: material m: ambient is used only by "
+                                    "shading phong" &&
+              warned.warnings[3].find("emit is used only by shading path") != std::string::npos &&
+              warned.triangles.size() == 2,
+          "a triangle without area and properties the floor shading does not use: warnings "
+          "with their lines, and the scene read as written");
+    CHECK(
+        ParseSceneText("shading phong\nmaterial m specular 0.5 10\n", "w.scene", &warned, &error) &&
+            warned.warnings.empty(),
+        "specular under shading phong: no warning");
     Scene square;
     CHECK(ParseSceneText("size 100\n", "s.scene", &square, &error) && square.width == 100 &&
               square.height == 100,
