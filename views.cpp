@@ -44,23 +44,34 @@ static color ShapeColor(const RayHit *hit) {
     return level * rgb[std::min(5, (int)hue)];
 }
 
-// Per light: white if it lights the point, red if a shape blocks it, dark grey if the surface
-// faces away from it; averaged over the lights. Uses the shading's own shadow test via AnyHit.
+// Whether a light lights the point (1), is blocked by a shape (0), or is behind the surface (-1),
+// by the shading's own shadow test.
+static int LightState(const Scene *scene, const RenderSettings *settings, const RayHit *hit,
+                      const Light *light) {
+    if (!(Dot(hit->normal, light->position - hit->point) > 0))
+        return -1;
+    Ray shadow;
+    RayStart start;
+    bool blocked = ShadowRay(hit, light->position, &settings->methods, &shadow, &start) &&
+                   AnyHitFrom(scene, settings->methods, &shadow, &start, 1);
+    return blocked ? 0 : 1;
+}
+
+// One light: white if it lights the point, red if a shape blocks it, dark grey if the surface
+// faces away from it. Several: each of the first three lights in its own channel (red, green,
+// blue), full where it lights the point, 0.45 where a shape blocks it, none where the surface
+// faces away, so every combination has its own colour (a fourth light on is not shown).
 static color ShadowMask(const Scene *scene, const RenderSettings *settings, const RayHit *hit) {
-    color sum = {0, 0, 0};
-    for (const Light &light : scene->lights) {
-        vec3 toLight = light.position - hit->point;
-        if (!(Dot(hit->normal, toLight) > 0)) {
-            sum = sum + color{0.25, 0.25, 0.25};
-            continue;
-        }
-        Ray shadow;
-        RayStart start;
-        bool blocked = ShadowRay(hit, light.position, &settings->methods, &shadow, &start) &&
-                       AnyHitFrom(scene, settings->methods, &shadow, &start, 1);
-        sum = sum + (blocked ? color{1, 0, 0} : color{1, 1, 1});
+    if (scene->lights.size() == 1) {
+        int state = LightState(scene, settings, hit, &scene->lights[0]);
+        return state > 0 ? color{1, 1, 1} : state == 0 ? color{1, 0, 0} : color{0.25, 0.25, 0.25};
     }
-    return scene->lights.empty() ? sum : (real(1) / scene->lights.size()) * sum;
+    real channel[3] = {0, 0, 0};
+    for (size_t k = 0; k < 3 && k < scene->lights.size(); k++) {
+        int state = LightState(scene, settings, hit, &scene->lights[k]);
+        channel[k] = state > 0 ? 1 : state == 0 ? real(0.45) : 0;
+    }
+    return {channel[0], channel[1], channel[2]};
 }
 
 // The raw value of one pixel; depth and cost are scaled to the image's range afterwards.
