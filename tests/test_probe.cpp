@@ -136,6 +136,19 @@ static void TestViews() {
     CHECK(pixel(256, 330, 0) == 255 && pixel(256, 330, 1) == 255 && pixel(256, 330, 2) == 255,
           "shadow view: lit is white");
 
+    // Two lights: at (110, 330) the red sphere's shadow from light 1; a second light far to the
+    // left, which lights that floor point, puts light 1 in red (0.45: blocked) and light 2 in
+    // green (1: lit)
+    Scene two = scene;
+    two.lights.push_back({{-30, 5, -15}, {1, 1, 1}});
+    RenderSettings twoSettings = TestSettings(&two);
+    RenderView(&two, &twoSettings, VIEW_SHADOW, &image);
+    CHECK(pixel(110, 330, 0) == 115 && pixel(110, 330, 1) == 255 && pixel(110, 330, 2) == 0,
+          "shadow view, two lights: blocked from the first (red 0.45), lit by the second (green)");
+    CHECK(pixel(256, 330, 0) == 255 && pixel(256, 330, 1) == 115 && pixel(256, 330, 2) == 0,
+          "and at (256, 330) the other way round: lit by the first, the second hidden by the "
+          "big sphere: another colour");
+
     // Depth view: the floor's front edge (nearest) is brighter than the back wall
     RenderView(&scene, &settings, VIEW_DEPTH, &image);
     CHECK(pixel(256, 350, 0) > pixel(256, 100, 0) && pixel(256, 100, 0) > 0,
