@@ -164,8 +164,8 @@ static RT_INLINE void SplatQuad(Quad *v, real x) {
         (*v)[i] = x;
 }
 // *to = yes where m is set, else what *to holds
-static RT_INLINE void Select(Quad *to, QuadMask m, Quad yes) {
-    *to = (Quad)(((QuadMask)yes & m) | ((QuadMask)*to & ~m));
+static RT_INLINE void Select(Quad *to, const QuadMask *m, const Quad *yes) {
+    *to = (Quad)(((QuadMask)*yes & *m) | ((QuadMask)*to & ~*m));
 }
 
 static RT_INLINE void ChildWindows(const BvhNode *n, const SlabRay *r, Quad *tNear, Quad *tFar) {
@@ -182,8 +182,9 @@ static RT_INLINE void ChildWindows(const BvhNode *n, const SlabRay *r, Quad *tNe
         SplatQuad(&o, origin[i]), SplatQuad(&inv, inverse[i]);
         Quad a = ((lo - pad) - o) * inv, b = ((hi + pad) - o) * inv;
         Quad first = r->backward[i] ? b : a, last = r->backward[i] ? a : b;
-        Select(&near, first > near, first); // (NaN compares false: no restriction)
-        Select(&far, last < far, last);
+        QuadMask nearer = first > near, closer = last < far;
+        Select(&near, &nearer, &first); // (NaN compares false: no restriction)
+        Select(&far, &closer, &last);
     }
     *tNear = near, *tFar = far;
 }
