@@ -24,12 +24,19 @@ static void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters) {
         color e = scene->materials[material].emit;
         return e.x > 0 || e.y > 0 || e.z > 0;
     };
+    // (A shape without area, or of an area beyond the range of numbers, can be neither hit nor
+    // sampled: it is left out, so no density is ever divided by 0 or infinity.)
+    auto add = [scene, emitters](Emitter e) {
+        real area = EmitterArea(scene, &e);
+        if (area > 0 && std::isfinite(area))
+            emitters->push_back(e);
+    };
     for (int i = 0; i < (int)scene->spheres.size(); i++)
         if (emits(scene->spheres[i].material))
-            emitters->push_back({SHAPE_SPHERE, i});
+            add({SHAPE_SPHERE, i});
     for (int i = 0; i < (int)scene->triangles.size(); i++)
         if (emits(scene->triangles[i].material))
-            emitters->push_back({SHAPE_TRIANGLE, i});
+            add({SHAPE_TRIANGLE, i});
 }
 
 void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects) {

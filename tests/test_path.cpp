@@ -273,6 +273,24 @@ static void TestThreadsAndCounts() {
     CHECK(ms.effects.indirect == false, "and the plan says no indirect light");
 }
 
+// An emitting triangle without area can be neither hit nor sampled: it is not an emitter, and
+// no density is divided by its area of 0 (which made NaN pixels).
+static void TestEmitterWithoutArea() {
+    Scene scene = SmallBox(6);
+    Material flat = Matte("flat", {0, 0, 0});
+    flat.emit = {5, 5, 5};
+    scene.materials.push_back(flat);
+    scene.triangles.push_back({{-1, real(0.5), -3}, {0, real(0.5), -3}, {1, real(0.5), -3}, 4});
+    RenderSettings s = PathSettings(&scene, 8, {});
+    RayStats stats = {};
+    bool finite = true;
+    for (int j = 0; j < 6; j++)
+        for (int i = 0; i < 6; i++)
+            finite = finite && IsFinite(Pixel(&scene, &s, i, j, &stats));
+    CHECK(finite && s.effects.emitters.size() == 2,
+          "a lamp without area is left out of the emitters (2 remain), and no pixel is NaN");
+}
+
 // The program: the path options, --stats and --pixel.
 static void TestPathProgram() {
     char pattern[] = "/tmp/rt-path-XXXXXX";
@@ -312,5 +330,6 @@ void TestPath() {
     TestConvergence();
     TestMethodsAgree();
     TestThreadsAndCounts();
+    TestEmitterWithoutArea();
     TestPathProgram();
 }
