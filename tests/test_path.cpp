@@ -11,7 +11,6 @@
 #include <cstdlib>
 #include <string>
 
-static const bool kDouble = sizeof(real) == sizeof(double);
 static const double kPi = 3.14159265358979323846;
 
 // A path-traced scene of size n x n, the camera at the origin looking down -z.
