@@ -21,10 +21,10 @@ struct PathSample {
     int i, j, s, seed;
 };
 
-// The random number for one decision of one path, in [0, 1): SplitMix64's finaliser (as the
-// jitter's hash, render.cpp) over the pixel, the sample, the bounce and the decision, with a
-// word of its own so these never repeat the jitter's numbers.
-static real PathRandom(const PathSample *p, int bounce, int dimension) {
+// The random bits for one decision of one path: SplitMix64's finaliser (as the jitter's hash,
+// render.cpp) over the seed, the pixel, the sample, the bounce and the decision, with a word of
+// its own so these never repeat the jitter's numbers.
+static uint64_t PathHash(const PathSample *p, int bounce, int dimension) {
     uint64_t z = 0x70617468; // "path"
     for (uint64_t word : {(uint64_t)p->seed, (uint64_t)p->i, (uint64_t)p->j, (uint64_t)p->s,
                           (uint64_t)bounce * 16 + (uint64_t)dimension}) {
@@ -33,7 +33,12 @@ static real PathRandom(const PathSample *p, int bounce, int dimension) {
         z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
         z ^= z >> 31;
     }
-    return real((z >> 40) * (1.0 / 16777216.0)); // 24 bits: exact in float too, and below 1
+    return z;
+}
+
+// A random number in [0, 1) from 24 of the bits: exact in float too, and below 1.
+static real PathRandom(const PathSample *p, int bounce, int dimension) {
+    return real((PathHash(p, bounce, dimension) >> 40) * (1.0 / 16777216.0));
 }
 
 // The decisions of one bounce, each with its own random number.
@@ -74,7 +79,8 @@ static vec3 ScatterDirection(ScatterMethod method, vec3 n, real u, real v) {
 static real PowerHeuristic(real a, real b) {
     if (!(a > 0))
         return 0;
-    return (a * a) / (a * a + b * b);
+    real r = b / a; // (as a ratio: a^2 alone can overflow for a tiny, distant emitter)
+    return std::isfinite(r) ? 1 / (1 + r * r) : 0;
 }
 
 // ---- emitters: the shapes whose material has `emit` (PlanEffects lists them) ---------------
@@ -203,7 +209,7 @@ static color PointLights(Path *path, const RayHit *hit, color rho) {
 // Next-event estimation for the emitting shapes: one emitter picked uniformly, one point on it
 // picked uniformly by area, its light times the BRDF and cos(theta) over the density of picking
 // it, weighted against the scattered ray's chance of finding the same point (MIS).
-static color Emitters(Path *path, const RayHit *hit, color rho) {
+static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
     const std::vector<Emitter> &emitters = path->settings->effects.emitters;
     if (emitters.empty() || path->settings->path.lights == LIGHTS_NONE)
         return {0, 0, 0};
@@ -221,9 +227,9 @@ static color Emitters(Path *path, const RayHit *hit, color rho) {
     int material = e->shape == SHAPE_SPHERE ? path->scene->spheres[e->index].material
                                             : path->scene->triangles[e->index].material;
     real pdf = EmitterPdf(emitters.size(), EmitterArea(path->scene, e), dist2, cosLight);
-    real weight = path->settings->path.lights == LIGHTS_MIS
+    real weight = path->settings->path.lights == LIGHTS_MIS && !last // (no scattered ray follows
                       ? PowerHeuristic(pdf, ScatterPdf(path->settings->path.scatter, cosTheta))
-                      : 1;
+                      : 1; // the last vertex to share the light with)
     return (weight * cosTheta / (kPi * pdf)) * (rho * path->scene->materials[material].emit);
 }
 
@@ -250,13 +256,17 @@ static real EmissionWeight(const Path *path, const RayHit *hit) {
 // Fresnel's share R and refracts the others; a diffuse surface adds the light that reaches it
 // from the lights and scatters. Each choice is made with the probability of its share, so the
 // shares themselves drop out of the throughput.
-static bool Bounce(Path *path, const RayHit *hit, const Material *m) {
+// At the last vertex a chain allows (`last`), no ray follows: a diffuse surface still adds the
+// light straight from the lights, as the other shadings' shadow rays do at any depth.
+static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) {
     const Methods *methods = &path->settings->methods;
     vec3 d = SafeNormalize(path->ray.dir), n = hit->normal;
     real pick = Random(path, PICK_SURFACE);
     path->scatterPdf = 0;
     path->kind = RAY_REFLECTION;
     if (pick < m->mirror) {
+        if (last)
+            return false;
         LeaveSurface(hit, Reflect(d, n), methods, &path->ray, &path->start);
         return true;
     }
@@ -267,18 +277,24 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m) {
         vec3 refracted;
         bool reflect = (pick - m->mirror) < reflectance * (1 - m->mirror) || // (the same number,
                        !Refract(d, n, eta, &refracted);                      // past K)
+        if (last)
+            return false;
         if (!reflect)
             path->kind = RAY_REFRACTION;
         LeaveSurface(hit, reflect ? Reflect(d, n) : refracted, methods, &path->ray, &path->start);
         return true;
     }
     color rho = m->diffuse;
-    path->light =
-        path->light + path->through * (PointLights(path, hit, rho) + Emitters(path, hit, rho));
+    if (!(MaxComponent(rho) > 0)) // black: it scatters nothing, not even the lights' light
+        return false;
+    path->light = path->light +
+                  path->through * (PointLights(path, hit, rho) + Emitters(path, hit, rho, last));
+    if (last)
+        return false;
     ScatterMethod method = path->settings->path.scatter;
     vec3 dir = ScatterDirection(method, n, Random(path, SCATTER_U), Random(path, SCATTER_V));
     real cosTheta = Dot(dir, n);
-    if (!(cosTheta > 0) || !(MaxComponent(rho) > 0))
+    if (!(cosTheta > 0))
         return false;
     // The estimator's factor BRDF cos / density: with cosine sampling cos / pi over cos / pi,
     // which cancels exactly, so it is rho itself (the white furnace's exact answer)
@@ -345,7 +361,7 @@ color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *p
         if (Emits(m))
             path.light = path.light + EmissionWeight(&path, &hit) * (path.through * m->emit);
         log->current = node;
-        if (number == settings->depth || !Bounce(&path, &hit, m) ||
+        if (!Bounce(&path, &hit, m, number == settings->depth) ||
             (!settings->path.noRoulette && number >= 2 && !Survives(&path)))
             break;
     }

@@ -148,14 +148,15 @@ static color AdaptivePixel(const Scene *scene, const RenderSettings *settings, i
     return (real(1) / n) * sum;
 }
 
-// Adaptive sampling for `shading path`: rounds of kPathRound samples, each at a random point of
-// the pixel, until the estimated error of the pixel's mean (the standard error of its samples'
-// brightness), as the sRGB curve will show it, is below kPathTolerance of an 8-bit step; at
-// least kPathFirst samples, at most samplesPerPixel. A pixel whose paths agree (the background,
-// a surface lit straight on) stops early; a noisy one takes them all. (Stopping on the samples'
-// own spread leans a little toward samples that happened to agree: a bias far below the error
-// it stops at.)
-const int kPathFirst = 16, kPathRound = 8;
+// Adaptive sampling for `shading path`, in two stages so that it stays unbiased: kPathFirst
+// pilot samples, each at a random point of the pixel, estimate the spread of the pixel's
+// samples; from it follows how many samples bring the error of the mean, as the sRGB curve will
+// show it, below kPathTolerance of an 8-bit step (at least kPathFirst, at most samplesPerPixel);
+// then that many fresh samples make the pixel. The pilots are not averaged in: a count chosen
+// from the very samples it averages leans toward those that happened to agree (16 black pilots
+// of a lamp found only by chance would stop a pixel at black). A pixel whose paths agree (the
+// background, a surface lit straight on) costs 2 x kPathFirst; a noisy one all its samples.
+const int kPathFirst = 16;
 const double kPathTolerance = 2.0 / 255;
 
 // How much the sRGB curve magnifies a small change of linear light m.
@@ -167,21 +168,24 @@ static double SrgbSlope(double m) {
 
 static color AdaptivePathPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
                                TraceLog *log) {
-    int most = settings->samplesPerPixel, n = 0;
-    color sum = {0, 0, 0};
+    int most = settings->samplesPerPixel;
     double brightness = 0, squares = 0;
-    while (n < most) {
-        for (int k = 0; k < kPathRound && n < most; k++, n++) {
-            vec2 u = HashPoint(i, j, n, 2);
-            color c = TraceSample(scene, settings, {i + u.x, j + u.y}, i, j, n, log);
-            double y = ((double)c.x + c.y + c.z) / 3;
-            sum = sum + c, brightness += y, squares += y * y;
-        }
-        if (n < kPathFirst)
-            continue;
-        double mean = brightness / n, variance = (squares / n - mean * mean) * n / (n - 1);
-        if (std::sqrt(std::max(0.0, variance) / n) * SrgbSlope(mean) <= kPathTolerance)
-            break;
+    for (int s = 0; s < kPathFirst; s++) { // the pilots: sample numbers past the pixel's own
+        vec2 u = HashPoint(i, j, most + s, 2);
+        color c = TraceSample(scene, settings, {i + u.x, j + u.y}, i, j, most + s, log);
+        double y = ((double)c.x + c.y + c.z) / 3;
+        brightness += y, squares += y * y;
+    }
+    double mean = brightness / kPathFirst;
+    double variance =
+        std::max(0.0, squares / kPathFirst - mean * mean) * kPathFirst / (kPathFirst - 1);
+    double slope = SrgbSlope(mean),
+           wanted = variance * slope * slope / (kPathTolerance * kPathTolerance);
+    int n = (int)std::min((double)most, std::max((double)kPathFirst, std::ceil(wanted)));
+    color sum = {0, 0, 0};
+    for (int s = 0; s < n; s++) {
+        vec2 u = HashPoint(i, j, s, 2);
+        sum = sum + TraceSample(scene, settings, {i + u.x, j + u.y}, i, j, s, log);
     }
     return (real(1) / n) * sum;
 }

@@ -168,9 +168,10 @@ static Scene SmallBox(int n) {
 }
 
 // The linear light of every pixel, averaged over the channels.
-static std::vector<double> Light(const Scene *scene, int spp, PathMethods path) {
+static std::vector<double> Light(const Scene *scene, int spp, PathMethods path,
+                                 SampleMethod sampling = SAMPLES_JITTER) {
     RenderSettings s = PathSettings(scene, spp, path);
-    s.sampling = SAMPLES_JITTER;
+    s.sampling = sampling;
     std::vector<double> v;
     RayStats stats = {};
     for (int j = 0; j < scene->height; j++)
@@ -214,9 +215,15 @@ static void TestMethodsAgree() {
                                   {SCATTER_COSINE, LIGHTS_NONE, false, 4},
                                   {SCATTER_UNIFORM, LIGHTS_NONE, true, 5}};
     const char *names[] = {"uniform sampling", "NEE without MIS", "no NEE",
-                           "uniform, no NEE, no roulette"};
-    for (int k = 0; k < 4; k++) {
-        std::vector<double> other = Light(&scene, 256, others[k]);
+                           "uniform, no NEE, no roulette", "adaptive sampling (no NEE)"};
+    for (int k = 0; k < 5; k++) {
+        if (k == 4) // adaptive, where the lamp is the only light and found only by chance: a
+            scene.lights.clear(); // count chosen from the averaged samples would darken it
+        std::vector<double> other =
+            k < 4 ? Light(&scene, 256, others[k])
+                  : Light(&scene, 256, {SCATTER_COSINE, LIGHTS_NONE, false, 6}, SAMPLES_ADAPTIVE);
+        if (k == 4)
+            base = Light(&scene, 256, {SCATTER_COSINE, LIGHTS_NONE, false, 1});
         double sum = 0, sum2 = 0, n = (double)base.size();
         for (size_t p = 0; p < base.size(); p++) {
             double d = other[p] - base[p];
@@ -224,7 +231,7 @@ static void TestMethodsAgree() {
         }
         double mean = sum / n, error = std::sqrt((sum2 / n - mean * mean) / (n - 1));
         CHECK(std::fabs(mean) <= 4 * error,
-              std::string(names[k]) + " agrees with cosine + MIS: mean difference " +
+              std::string(names[k]) + " agrees with the reference estimate: mean difference " +
                   std::to_string(mean) + " within 4 x " + std::to_string(error));
     }
 }
@@ -243,7 +250,7 @@ static void TestThreadsAndCounts() {
           "path tracing: the same image bytes and ray counts on 1 and 2 threads");
     // A cap of 2 rays: every primary ray meets a wall (the box is closed but for the front,
     // which the camera looks through), adds 1 shadow ray for the point light and 1 for an
-    // emitter, and scatters once
+    // emitter, and scatters once; the scattered ray's vertex adds its shadow rays and ends
     scene.depth = 2;
     RayStats c = {};
     RenderSettings capped = PathSettings(&scene, 1, {SCATTER_COSINE, LIGHTS_MIS, true, 0});
@@ -259,7 +266,8 @@ static void TestThreadsAndCounts() {
         }
     CHECK(c.diffuse == diffuseHits && diffuseHits > 200,
           "a cap of 2 rays: one scattered ray for each pixel that sees a diffuse surface");
-    CHECK(c.shadow <= 2 * 256 && c.shadow >= 256, "at most 2 shadow rays a pixel");
+    CHECK(c.shadow <= 4 * 256 && c.shadow >= 256,
+          "at most 2 shadow rays at each of the 2 vertices (the last one still sees the lights)");
     // No diffuse surface: a mirror box casts no scattered rays
     Scene mirrors = SmallBox(8);
     for (Material &m : mirrors.materials)
