@@ -27,12 +27,8 @@ struct PathSample {
 static uint64_t PathHash(const PathSample *p, int bounce, int dimension) {
     uint64_t z = 0x70617468; // "path"
     for (uint64_t word : {(uint64_t)p->seed, (uint64_t)p->i, (uint64_t)p->j, (uint64_t)p->s,
-                          (uint64_t)bounce * 16 + (uint64_t)dimension}) {
-        z += word + 0x9e3779b97f4a7c15ULL;
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-        z ^= z >> 31;
-    }
+                          (uint64_t)bounce * 16 + (uint64_t)dimension})
+        z = MixWord(z, word);
     return z;
 }
 
@@ -85,7 +81,7 @@ static real PowerHeuristic(real a, real b) {
 
 // ---- emitters: the shapes whose material has `emit` (PlanEffects lists them) ---------------
 
-static bool Emits(const Material *m) { return m->emit.x > 0 || m->emit.y > 0 || m->emit.z > 0; }
+bool Emits(const Material *m) { return m->emit.x > 0 || m->emit.y > 0 || m->emit.z > 0; }
 
 real EmitterArea(const Scene *scene, const Emitter *e) {
     if (e->shape == SHAPE_SPHERE) {

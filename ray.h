@@ -36,6 +36,17 @@ const real kUnitRoundoff = std::numeric_limits<real>::epsilon() * real(0.5);
 // (Higham, "Accuracy and Stability of Numerical Algorithms", 2002, Lemma 3.1; pbrt-v4 §6.8.1).
 inline real Gamma(int n) { return (n * kUnitRoundoff) / (1 - n * kUnitRoundoff); }
 
+// One step of a counter-based hash: the word added to the state, then SplitMix64's finaliser
+// (Steele, Lea & Flood, "Fast Splittable Pseudorandom Number Generators", OOPSLA 2014). Folding
+// the numbers that name a sample (pixel, sample, bounce, ...) in turn gives random bits that
+// depend on nothing else, so the image never depends on which thread drew them.
+inline uint64_t MixWord(uint64_t z, uint64_t word) {
+    z += word + 0x9e3779b97f4a7c15ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
 // ---- vectors -------------------------------------------------------------------------------
 
 struct vec2 {
@@ -653,6 +664,9 @@ bool HitWatertightTriangles(const Triangle *triangles, int n, int skip, const Ra
 // in log->tree if that is set.
 color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, int i,
                 int j, int s, TraceLog *log);
+
+// Whether a material gives off light (`emit` above 0 in some channel).
+bool Emits(const Material *m);
 
 // The surface area of an emitting shape.
 real EmitterArea(const Scene *scene, const Emitter *e);

@@ -73,12 +73,8 @@ vec2 SamplePosition(int i, int j, int s, int n) {
 // Pseudorandom Number Generators", OOPSLA 2014) applied to the four numbers in turn.
 static vec2 HashPoint(int i, int j, int s, int stream) {
     uint64_t z = 0;
-    for (uint64_t word : {(uint64_t)i, (uint64_t)j, (uint64_t)s, (uint64_t)stream}) {
-        z += word + 0x9e3779b97f4a7c15ULL;
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-        z ^= z >> 31;
-    }
+    for (uint64_t word : {(uint64_t)i, (uint64_t)j, (uint64_t)s, (uint64_t)stream})
+        z = MixWord(z, word);
     return {real((z >> 40) * (1.0 / 16777216.0)),
             real(((z >> 16) & 0xffffff) * (1.0 / 16777216.0))};
 }

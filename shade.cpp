@@ -20,10 +20,7 @@ static bool MaterialIsUsed(const Scene *scene, int material) {
 
 // `shading path`: the shapes whose material emits, for next-event estimation.
 static void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters) {
-    auto emits = [scene](int material) {
-        color e = scene->materials[material].emit;
-        return e.x > 0 || e.y > 0 || e.z > 0;
-    };
+    auto emits = [scene](int material) { return Emits(&scene->materials[material]); };
     // (A shape without area, or of an area beyond the range of numbers, can be neither hit nor
     // sampled: it is left out, so no density is ever divided by 0 or infinity.)
     auto add = [scene, emitters](Emitter e) {
@@ -62,12 +59,7 @@ void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *ef
 
 // Adds one shape (or 0: none) to the hash of the shapes a pixel sample's rays met, in order
 // (SplitMix64's finaliser, as the jitter's hash).
-static uint64_t MixSurface(uint64_t hash, uint64_t shape) {
-    uint64_t z = hash + shape + 0x9e3779b97f4a7c15ULL;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
+static uint64_t MixSurface(uint64_t hash, uint64_t shape) { return MixWord(hash, shape); }
 
 // Adds a node for `ray` to the ray tree, if one is being recorded; returns its index or -1.
 int RecordRay(RayKind kind, const Ray *ray, TraceLog *log) {

@@ -48,6 +48,11 @@ double ShareAlike(const Image &a, const Image &b);
 // The program under test for command-line checks: $RAY, or ./ray (./ray_float in the float build).
 std::string RayProgram();
 
+// A fresh directory /tmp/rt-NAME-XXXXXX for a group's program tests, checked; "" if none could be
+// made (the group then returns). RemoveTestDir deletes it with its contents, checked.
+std::string MakeTestDir(const char *name);
+void RemoveTestDir(const std::string &dir);
+
 // A whole file's bytes ("" if it cannot be read).
 std::string ReadFile(const std::string &path);
 

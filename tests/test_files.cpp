@@ -202,10 +202,8 @@ static void TestOddInputs(const std::string &dir) {
 }
 
 void TestFiles() {
-    char pattern[] = "/tmp/rt-files-XXXXXX";
-    const char *dir = mkdtemp(pattern);
-    CHECK(dir != nullptr, "a temporary directory for the file tests");
-    if (!dir)
+    std::string dir = MakeTestDir("files");
+    if (dir.empty())
         return;
     TestOutputIsAnInput(dir);
     TestReadOnlyOutput(dir);
@@ -213,7 +211,7 @@ void TestFiles() {
     TestInterruptedWrites(dir);
     TestFileSizeLimit(dir);
     TestOddInputs(dir);
-    std::string command = "rm -rf '" + std::string(dir) + "'";
+    std::string command = "rm -rf '" + dir + "'";
     int ignored = system(command.c_str());
     (void)ignored;
 }

@@ -24,6 +24,19 @@ std::string DescribeNear(double actual, double expected, double tolerance) {
     return text;
 }
 
+std::string MakeTestDir(const char *name) {
+    std::string pattern = std::string("/tmp/rt-") + name + "-XXXXXX";
+    std::vector<char> buffer(pattern.begin(), pattern.end());
+    buffer.push_back(0);
+    const char *dir = mkdtemp(buffer.data());
+    CHECK(dir != nullptr, std::string("a temporary directory for the ") + name + " tests");
+    return dir ? dir : "";
+}
+
+void RemoveTestDir(const std::string &dir) {
+    CHECK(system(("rm -rf '" + dir + "'").c_str()) == 0, "temporary directory removed");
+}
+
 RenderSettings TestSettings(const Scene *scene) {
     RenderSettings s;
     s.width = scene->width;

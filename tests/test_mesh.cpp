@@ -270,10 +270,8 @@ static void TestMeshStatementErrors(const std::string &dir) {
 }
 
 void TestMesh() {
-    char pattern[] = "/tmp/rt-mesh-XXXXXX";
-    const char *dir = mkdtemp(pattern);
-    CHECK(dir != nullptr, "a temporary directory for the mesh tests");
-    if (!dir)
+    std::string dir = MakeTestDir("mesh");
+    if (dir.empty())
         return;
     TestObjFaces();
     TestObjErrors();
@@ -281,6 +279,5 @@ void TestMesh() {
     TestTransformOverflow();
     TestMeshPaths(dir);
     TestMeshStatementErrors(dir);
-    std::string cleanup = std::string("rm -rf '") + dir + "'";
-    CHECK(system(cleanup.c_str()) == 0, "temporary directory removed");
+    RemoveTestDir(dir);
 }

@@ -159,14 +159,11 @@ static void TestMeshInProgram(const std::string &dir) {
 }
 
 void TestMeshRays() {
-    char pattern[] = "/tmp/rt-mesh-rays-XXXXXX";
-    const char *dir = mkdtemp(pattern);
-    CHECK(dir != nullptr, "a temporary directory for the mesh ray tests");
-    if (!dir)
+    std::string dir = MakeTestDir("mesh-rays");
+    if (dir.empty())
         return;
     TestMeshProbes(dir);
     TestIcosphereIsClosed();
     TestMeshInProgram(dir);
-    std::string cleanup = std::string("rm -rf '") + dir + "'";
-    CHECK(system(cleanup.c_str()) == 0, "temporary directory removed");
+    RemoveTestDir(dir);
 }

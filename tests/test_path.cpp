@@ -300,10 +300,8 @@ static void TestEmitterWithoutArea() {
 
 // The program: the path options, --stats and --pixel.
 static void TestPathProgram() {
-    char pattern[] = "/tmp/rt-path-XXXXXX";
-    const char *dir = mkdtemp(pattern);
-    CHECK(dir != nullptr, "a temporary directory for the path tracer's program tests");
-    if (!dir)
+    std::string dir = MakeTestDir("path");
+    if (dir.empty())
         return;
     std::string scene = "size 8 8\nshading path\nlight 0 0.5 -2 2 2 2\nmaterial lamp emit 3 3 3\n"
                         "material white diffuse 0.7 0.7 0.7\n"
@@ -326,8 +324,7 @@ static void TestPathProgram() {
               tree.find("\"kind\":\"shadow\"") != std::string::npos,
           "--pixel shows the path: a diffuse ray and shadow rays in the tree");
     CHECK(RunRay(dir, "p.scene --lights some", &err) == 2, "--lights some: exit 2");
-    CHECK(system((std::string("rm -rf '") + dir + "'").c_str()) == 0,
-          "temporary directory removed");
+    RemoveTestDir(dir);
 }
 
 void TestPath() {

@@ -259,16 +259,13 @@ static void TestCompareInProgram(const std::string &dir) {
 }
 
 void TestProgram() {
-    char pattern[] = "/tmp/rt-test-XXXXXX";
-    const char *dir = mkdtemp(pattern);
-    CHECK(dir != nullptr, "a temporary directory for the program tests");
-    if (!dir)
+    std::string dir = MakeTestDir("test");
+    if (dir.empty())
         return;
     TestDefaultRun(dir);
     TestBadInput(dir);
     TestSceneFilesInProgram(dir);
     TestProbesInProgram(dir);
     TestCompareInProgram(dir);
-    std::string cleanup = std::string("rm -rf '") + dir + "'";
-    CHECK(system(cleanup.c_str()) == 0, "temporary directory removed");
+    RemoveTestDir(dir);
 }
