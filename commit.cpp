@@ -273,9 +273,9 @@ void CommitScene(Scene *scene, LayoutChoice choice) {
             index[i] = i;
         AppendBlocks(triangles, index.data(), n, &layout);
     }
-    layout.boxes.resize(n);
+    layout.setUps.resize(n);
     for (int i = 0; i < n; i++)
-        layout.boxes[i] = TriangleBox(&triangles[i]);
+        SetUpTriangle(&triangles[i], &layout.setUps[i]);
     layout.triangleCount = triangles.size();
     layout.committed = true;
     layout.wide = KernelCanBeWide();

@@ -292,7 +292,7 @@ bool ShadowRay(const RayHit *hit, vec3 lightPosition, const Methods *methods, Ra
 // surface (pbrt-v4 §6.8.6): the hit point is within pointError of the true surface, so moving
 // it along the normal by the error box's extent in that direction, sum |n_i| pointError_i, puts
 // it on the side the new ray goes to, whatever the scene's scale. Rounding the moved point
-// outward (nextafter) keeps the addition itself from undoing the move. The new ray then uses
+// outward (NextAfter) keeps the addition itself from undoing the move. The new ray then uses
 // tMin = 0, and the intersectors' own "t above its rounding error" tests do the rest.
 vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir) {
     real distance = Dot(Abs(hit->normal), hit->pointError);
@@ -304,9 +304,9 @@ vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir) {
     real push[3] = {offset.x, offset.y, offset.z};
     for (int i = 0; i < 3; i++) {
         if (push[i] > 0)
-            *coord[i] = std::nextafter(*coord[i], kInfinity);
+            *coord[i] = NextAfter(*coord[i], true);
         else if (push[i] < 0)
-            *coord[i] = std::nextafter(*coord[i], -kInfinity);
+            *coord[i] = NextAfter(*coord[i], false);
     }
     return moved;
 }

@@ -113,7 +113,7 @@ static RT_INLINE unsigned SurvivorsOneByOne(const TriangleBlock *b, const RayShe
 // The search so far: the ray, its interval, the nearest hit and its triangle's place.
 struct Search {
     const Triangle *triangles;
-    const Box *boxes; // the triangles' boxes (SceneLayout)
+    const TriangleSetUp *setUps; // the triangles' boxes and planes (SceneLayout)
     const Ray *ray;
     const RayShear *shear;
     SlabRay slab; // for the BVH's boxes (SlabInterval)
@@ -137,9 +137,8 @@ static RT_INLINE bool TestBlocks(const TriangleBlock *blocks, int first, int cou
             int index = b->index[__builtin_ctz(live)];
             if (index < 0 || index == s->skip)
                 continue;
-            real limit =
-                s->best >= 0 && index < s->best ? std::nextafter(s->tMax, kInfinity) : s->tMax;
-            if (!IntersectWatertight(&s->triangles[index], &s->boxes[index], s->ray, s->shear,
+            real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;
+            if (!IntersectWatertight(&s->triangles[index], &s->setUps[index], s->ray, s->shear,
                                      s->tMin, limit, hit))
                 continue;
             hit->index = s->best = index;
@@ -256,7 +255,7 @@ template <bool kWide>
 static RT_INLINE bool HitAll(const Scene *scene, int skip, const Ray *ray, const RayShear *shear,
                              real tMin, real tMax, bool anyHit, RayHit *hit) {
     Search s = {scene->triangles.data(),
-                scene->layout.boxes.data(),
+                scene->layout.setUps.data(),
                 ray,
                 shear,
                 {},

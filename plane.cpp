@@ -20,11 +20,6 @@
 
 #include <algorithm>
 
-// A vector in double, whatever `real` is.
-struct dvec3 {
-    double x, y, z;
-};
-
 static dvec3 Widen(vec3 v) { return {v.x, v.y, v.z}; }
 static dvec3 Sub(dvec3 a, dvec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 static dvec3 Scale(double s, dvec3 a) { return {s * a.x, s * a.y, s * a.z}; }
@@ -100,15 +95,11 @@ static Wide3 WideCross(Wide3 a, Wide3 b) {
 
 // ---- the two tiers ------------------------------------------------------------------------
 
-// The triangle and the ray in double: corner a, the exact edges' operands, the edges as tier 1
-// rounds them (times 2^scale, which keeps a triangle of size 1e-200 or 1e200 from a normal that
-// under- or overflows; n only matters up to its length), the ray.
+// The triangle and the ray in double: the corners, the triangle's set-up (its rounded normal,
+// from edges times 2^scale: SetUpTriangle), the ray.
 struct PlaneProblem {
     dvec3 a, b, c; // corners
-    int scale;     // the edges are multiplied by 2^scale
-    dvec3 e1, e2;  // (b - a) 2^scale and (c - a) 2^scale, rounded
-    dvec3 n;       // e1 x e2, rounded
-    dvec3 nTerms;  // the sizes of the products in each component of n (CrossTerms)
+    const TriangleSetUp *fixed;
     dvec3 origin, dir;
 };
 
@@ -132,11 +123,11 @@ static double PlaneError(double t, double denominator, double eN, double eD, dve
 // sum |n_i d_i|; each normal component, two edge roundings, the products and the subtraction:
 // gamma(5) of its two products' sizes; the division, gamma(1) of t.
 static double PlainError(const PlaneProblem *p, dvec3 toA, double t, double denominator) {
-    dvec3 absN = AbsD(p->n);
+    dvec3 absN = AbsD(p->fixed->n);
     double eN = GammaD(4) * DotD(absN, AbsD(toA));
     double eD = GammaD(3) * DotD(absN, AbsD(p->dir));
     dvec3 toCorner = {toA.x - t * p->dir.x, toA.y - t * p->dir.y, toA.z - t * p->dir.z};
-    return PlaneError(t, denominator, eN, eD, Scale(GammaD(5), p->nTerms), toCorner) +
+    return PlaneError(t, denominator, eN, eD, Scale(GammaD(5), p->fixed->nTerms), toCorner) +
            GammaD(1) * std::fabs(t);
 }
 
@@ -145,7 +136,8 @@ static double PlainError(const PlaneProblem *p, dvec3 toA, double t, double deno
 // of them, so 32 u^2 of the first-order terms' sizes bounds what they contribute; rounding the
 // two sums to double and dividing adds 3 u of t.
 static PlaneT WidePlaneT(const PlaneProblem *p) {
-    Wide3 e1 = ExactDifference(p->b, p->a, p->scale), e2 = ExactDifference(p->c, p->a, p->scale);
+    int k = p->fixed->scale;
+    Wide3 e1 = ExactDifference(p->b, p->a, k), e2 = ExactDifference(p->c, p->a, k);
     Wide3 n = WideCross(e1, e2), toA = ExactDifference(p->a, p->origin, 0);
     Wide3 d = {{p->dir.x, 0}, {p->dir.y, 0}, {p->dir.z, 0}};
     Wide numerator = WideDot(n, toA), denominator = WideDot(n, d);
@@ -160,30 +152,35 @@ static PlaneT WidePlaneT(const PlaneProblem *p) {
     return {t, error + GammaD(4) * std::fabs(t)};
 }
 
-// The edges and normal of tier 1. The edges are scaled by a power of two when they lie outside
-// 2^+-64, so that the longer one's largest component is in [1, 2): n is then at most 8 (less for a
-// sliver), and n.(a - o) over- or underflows only where a - o itself nearly does. ldexp scales by
-// any power, in exact steps.
-static void SetUpPlane(const Triangle *tri, const Ray *ray, PlaneProblem *p) {
-    p->a = Widen(tri->a), p->b = Widen(tri->b), p->c = Widen(tri->c);
-    p->origin = Widen(ray->origin), p->dir = Widen(ray->dir);
-    p->e1 = Sub(p->b, p->a), p->e2 = Sub(p->c, p->a);
-    dvec3 m1 = AbsD(p->e1), m2 = AbsD(p->e2);
+// The edges and normal of tier 1, and the box. The edges are scaled by a power of two when they
+// lie outside 2^+-64, so that the longer one's largest component is in [1, 2): n is then at
+// most 8 (less for a sliver), and n.(a - o) over- or underflows only where a - o itself nearly
+// does. ldexp scales by any power, in exact steps.
+void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp) {
+    setUp->box = TriangleBox(tri);
+    dvec3 a = Widen(tri->a), e1 = Sub(Widen(tri->b), a), e2 = Sub(Widen(tri->c), a);
+    dvec3 m1 = AbsD(e1), m2 = AbsD(e2);
     double m = std::max({m1.x, m1.y, m1.z, m2.x, m2.y, m2.z});
-    p->scale = 0; // no scaling
+    setUp->scale = 0; // no scaling
     if (!(m >= 0x1p-64 && m <= 0x1p64) && m > 0 && std::isfinite(m)) {
-        p->scale = -std::ilogb(m);
-        p->e1 = {std::ldexp(p->e1.x, p->scale), std::ldexp(p->e1.y, p->scale),
-                 std::ldexp(p->e1.z, p->scale)};
-        p->e2 = {std::ldexp(p->e2.x, p->scale), std::ldexp(p->e2.y, p->scale),
-                 std::ldexp(p->e2.z, p->scale)};
+        int k = setUp->scale = -std::ilogb(m);
+        e1 = {std::ldexp(e1.x, k), std::ldexp(e1.y, k), std::ldexp(e1.z, k)};
+        e2 = {std::ldexp(e2.x, k), std::ldexp(e2.y, k), std::ldexp(e2.z, k)};
     }
-    dvec3 e1 = p->e1, e2 = p->e2;
     double yz = e1.y * e2.z, zy = e1.z * e2.y, zx = e1.z * e2.x, xz = e1.x * e2.z;
     double xy = e1.x * e2.y, yx = e1.y * e2.x;
-    p->n = {yz - zy, zx - xz, xy - yx}; // CrossD(e1, e2), keeping its products for the bound
-    p->nTerms = {std::fabs(yz) + std::fabs(zy), std::fabs(zx) + std::fabs(xz),
-                 std::fabs(xy) + std::fabs(yx)};
+    dvec3 n = setUp->n = {yz - zy, zx - xz, xy - yx}; // CrossD(e1, e2), keeping its products
+    setUp->nTerms = {std::fabs(yz) + std::fabs(zy), std::fabs(zx) + std::fabs(xz),
+                     std::fabs(xy) + std::fabs(yx)};
+
+    // The unit normal, for shading. A sliver's n may be so small that n.n underflows: then it is
+    // scaled by a power of two first, which changes no bit of n / |n|.
+    double largest = std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
+    setUp->hasArea = largest > 0 && std::isfinite(largest);
+    if (setUp->hasArea && !(largest >= 0x1p-500 && largest <= 0x1p500))
+        n = Scale(std::ldexp(1.0, -std::ilogb(largest)), n);
+    double inverse = 1 / std::sqrt(DotD(n, n));
+    setUp->normal = {(real)(inverse * n.x), (real)(inverse * n.y), (real)(inverse * n.z)};
 }
 
 // Where the triangle's hit must lie: the window [near, far] in which the ray's line passes its
@@ -247,7 +244,8 @@ static inline bool IntoWindow(const PlaneProblem *p, Window *w, PlaneT *plane) {
 // but skims its plane, fails this: its plain t can be off by far more than the bound says.
 static bool FirstOrderHolds(const PlaneProblem *p, double denominator) {
     const double kSmall = 1.0 / 1024;
-    dvec3 absN = AbsD(p->n), absD = AbsD(p->dir), eNormal = Scale(GammaD(5), p->nTerms);
+    dvec3 absN = AbsD(p->fixed->n), absD = AbsD(p->dir);
+    dvec3 eNormal = Scale(GammaD(5), p->fixed->nTerms);
     double eD = GammaD(3) * DotD(absN, absD) + DotD(eNormal, absD);
     return std::max({eNormal.x, eNormal.y, eNormal.z}) <=
                kSmall * std::max({absN.x, absN.y, absN.z}) &&
@@ -256,8 +254,8 @@ static bool FirstOrderHolds(const PlaneProblem *p, double denominator) {
 
 static bool FindPlaneT(const PlaneProblem *p, Window *w, real tMin, real tMax, PlaneT *plane) {
     dvec3 toA = Sub(p->a, p->origin);
-    double denominator = DotD(p->n, p->dir);
-    double t = DotD(p->n, toA) / denominator;
+    double denominator = DotD(p->fixed->n, p->dir);
+    double t = DotD(p->fixed->n, toA) / denominator;
     if (!std::isfinite(t)) // the ray is parallel to the plane, or n is 0
         return false;
     *plane = {t, PlainError(p, toA, t, denominator)};
@@ -286,35 +284,25 @@ static bool FindPlaneT(const PlaneProblem *p, Window *w, real tMin, real tMax, P
 // The hit record for a triangle whose interior the ray passes through (the caller has decided
 // that): t from the plane (FindPlaneT). The point is o + t d, which lies on the plane to within
 // its bound: the rounding of o + t d itself, and t's error times |d|.
-bool RobustPlaneHit(const Triangle *tri, const Box *box, const Ray *ray, real tMin, real tMax,
-                    RayHit *hit) {
-    PlaneProblem p;
-    SetUpPlane(tri, ray, &p);
-    Box own;
-    if (!box)
-        own = TriangleBox(tri), box = &own;
-    Window window = {box, ray, false, 0, 0};
+bool RobustPlaneHit(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray, real tMin,
+                    real tMax, RayHit *hit) {
+    TriangleSetUp own;
+    if (!setUp)
+        SetUpTriangle(tri, &own), setUp = &own;
+    if (!setUp->hasArea)
+        return false; // no area: no plane, no normal
+    PlaneProblem p = {Widen(tri->a), Widen(tri->b),      Widen(tri->c),
+                      setUp,         Widen(ray->origin), Widen(ray->dir)};
+    Window window = {&setUp->box, ray, false, 0, 0};
     PlaneT plane;
     if (!FindPlaneT(&p, &window, tMin, tMax, &plane))
         return false;
-
-    // The unit normal, for shading, and the side the ray came from. A sliver's n may be so small
-    // that n.n underflows: then it is scaled by a power of two first, which changes no bit of
-    // n / |n|.
-    dvec3 n = p.n;
-    double largest = std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
-    if (!(largest > 0) || !std::isfinite(largest))
-        return false; // no area: no normal
-    if (!(largest >= 0x1p-500 && largest <= 0x1p500))
-        n = Scale(std::ldexp(1.0, -std::ilogb(largest)), n);
-    double inverse = 1 / std::sqrt(DotD(n, n));
-    vec3 normal = {(real)(inverse * n.x), (real)(inverse * n.y), (real)(inverse * n.z)};
 
     real t = (real)plane.t;
     vec3 along = t * ray->dir;
     if (!IsFinite(ray->origin + along)) // t finite, but the point beyond the range of numbers
         return false;
-    SetFaceNormal(ray, normal, hit); // (a miss leaves *hit as it was)
+    SetFaceNormal(ray, setUp->normal, hit); // (a miss leaves *hit as it was)
     hit->t = t;
     hit->point = ray->origin + along;
     real tError = (real)plane.error + Gamma(1) * t;

@@ -202,6 +202,23 @@ struct Box {
     real size;
 };
 
+// A vector in double, whatever `real` is: plane.cpp's first tier computes in double.
+struct dvec3 {
+    double x, y, z;
+};
+
+// What a triangle's hit needs that does not depend on the ray (plane.cpp): the box that holds
+// every hit (TriangleBox, the window), and the plane's normal as the first tier rounds it. The
+// committed scene keeps one for each triangle (SceneLayout); the plain loop makes it as it goes.
+struct TriangleSetUp {
+    Box box;
+    int scale;    // the edges are multiplied by 2^scale before their cross product
+    dvec3 n;      // (b - a) 2^scale x (c - a) 2^scale, rounded
+    dvec3 nTerms; // the sizes of the two products in each component of n: its error scales so
+    vec3 normal;  // n / |n|, for shading
+    bool hasArea; // n is neither 0 nor beyond the range of numbers
+};
+
 struct TriangleBlock {
     alignas(32) real corner[9][kLanes]; // a.x a.y a.z b.x b.y b.z c.x c.y c.z, lane by lane
     int index[kLanes];                  // each lane's place in scene->triangles; -1: empty
@@ -224,7 +241,7 @@ enum LayoutChoice { LAYOUT_AUTO, LAYOUT_LIST, LAYOUT_BVH };
 struct SceneLayout {
     std::vector<TriangleBlock> blocks; // in scene order, or in BVH leaf order
     std::vector<BvhNode> nodes;        // empty: no BVH, the blocks are one list
-    std::vector<Box> boxes;            // each triangle's TriangleBox, by its place in the scene
+    std::vector<TriangleSetUp> setUps; // each triangle's box and plane, by its place in the scene
     size_t triangleCount = 0;          // the number of triangles it was built from
     bool committed = false;
     bool wide = false; // the kernel tests blocks in AVX2 vectors (else lane by lane: kernel.cpp)
@@ -232,7 +249,7 @@ struct SceneLayout {
     SceneLayout() = default;
     SceneLayout(const SceneLayout &) {}
     SceneLayout &operator=(const SceneLayout &) {
-        blocks.clear(), nodes.clear(), boxes.clear(), triangleCount = 0, committed = false;
+        blocks.clear(), nodes.clear(), setUps.clear(), triangleCount = 0, committed = false;
         wide = false;
         return *this;
     }
@@ -460,6 +477,27 @@ inline real PowerOfTwo(int k) {
     return x;
 }
 
+// The number next to x toward +infinity (up) or -infinity: std::nextafter(x, +-infinity), bit
+// for bit, without the library call (every ray that leaves a surface and every tie in the shape
+// loop asks for it). Away from 0 the neighbour is the bit pattern one step further from or
+// nearer to 0; from 0 it is the smallest subnormal.
+inline real NextAfter(real x, bool up) {
+    if (x != x || (x == (up ? kInfinity : -kInfinity)))
+        return x; // NaN, or already the end it moves toward
+    if (x == 0)
+        return up ? std::numeric_limits<real>::denorm_min()
+                  : -std::numeric_limits<real>::denorm_min();
+#ifdef RT_FLOAT
+    uint32_t bits;
+#else
+    uint64_t bits;
+#endif
+    memcpy(&bits, &x, sizeof bits);
+    bits = (x > 0) == up ? bits + 1 : bits - 1;
+    memcpy(&x, &bits, sizeof x);
+    return x;
+}
+
 // x * 2^k and v * 2^k for any k (in two exact steps when 2^k itself is out of range).
 inline real ScaleByPowerOfTwo(real x, int k) {
     const int kMax = std::numeric_limits<real>::max_exponent - 1;
@@ -589,12 +627,14 @@ bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, rea
                              RayHit *hit);
 bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit);
 
+void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp);
+
 // The hit record of a triangle whose interior the ray passes through (plane.cpp): t from the
 // triangle's plane, accurate for triangles of any length, and the point o + t d; false if t is
 // outside (tMin, tMax) or within its rounding error of 0 (the ray has just left this plane).
-// `box` is the triangle's TriangleBox, or null to compute it here.
-bool RobustPlaneHit(const Triangle *tri, const Box *box, const Ray *ray, real tMin, real tMax,
-                    RayHit *hit);
+// `setUp` is the triangle's SetUpTriangle, or null to compute it here.
+bool RobustPlaneHit(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray, real tMin,
+                    real tMax, RayHit *hit);
 
 // What a ray must not count as a hit besides t outside its interval: hits at t <= tMin, and the
 // shape it leaves (index -1: none). Set by LeaveSurface and ShadowRay from the self-hit method;
@@ -648,8 +688,9 @@ struct RayShear {
 void ShearRay(const Ray *ray, RayShear *shear);
 
 // The watertight test of one triangle for a ray whose shear is computed: as IntersectTriangle.
-bool IntersectWatertight(const Triangle *tri, const Box *box, const Ray *ray, const RayShear *shear,
-                         real tMin, real tMax, RayHit *hit);
+// `setUp` as for RobustPlaneHit.
+bool IntersectWatertight(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray,
+                         const RayShear *shear, real tMin, real tMax, RayHit *hit);
 
 // The triangle half of the shape loop (HitShapes) for the watertight method: the nearest hit
 // (the first, with anyHit) among triangles[0..n) but `skip`, with t in (tMin, tMax). Compiled once

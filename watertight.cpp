@@ -131,8 +131,8 @@ static inline bool EdgesDisagree(const ShearedTriangle *s, real *u, real *v, rea
 // so a shared edge's function is the same number with the opposite sign, and the one case in
 // which rounding can lie, a value of exactly 0, is recomputed exactly. No epsilon anywhere.
 template <int kz>
-static bool IntersectSheared(const Triangle *tri, const Box *box, const Ray *ray, const RayShear *k,
-                             real tMin, real tMax, RayHit *hit) {
+static bool IntersectSheared(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray,
+                             const RayShear *k, real tMin, real tMax, RayHit *hit) {
     // Translate the corners to the ray origin and shear them so the ray is the +z axis
     ShearedTriangle s = ShearCorners<kz>(tri, k);
 
@@ -155,16 +155,16 @@ static bool IntersectSheared(const Triangle *tri, const Box *box, const Ray *ray
     // Inside: where, from the triangle's plane (plane.cpp). The paper's own
     // t = (U Az + V Bz + W Cz) / (U + V + W) loses about u L^2 / w for a triangle of length L and
     // width w, more than the 1.5 units to the floor of a corridor 1e8 long.
-    return RobustPlaneHit(tri, box, ray, tMin, tMax, hit);
+    return RobustPlaneHit(tri, setUp, ray, tMin, tMax, hit);
 }
 
-bool IntersectWatertight(const Triangle *tri, const Box *box, const Ray *ray, const RayShear *shear,
-                         real tMin, real tMax, RayHit *hit) {
+bool IntersectWatertight(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray,
+                         const RayShear *shear, real tMin, real tMax, RayHit *hit) {
     if (shear->kz == 0)
-        return IntersectSheared<0>(tri, box, ray, shear, tMin, tMax, hit);
+        return IntersectSheared<0>(tri, setUp, ray, shear, tMin, tMax, hit);
     if (shear->kz == 1)
-        return IntersectSheared<1>(tri, box, ray, shear, tMin, tMax, hit);
-    return IntersectSheared<2>(tri, box, ray, shear, tMin, tMax, hit);
+        return IntersectSheared<1>(tri, setUp, ray, shear, tMin, tMax, hit);
+    return IntersectSheared<2>(tri, setUp, ray, shear, tMin, tMax, hit);
 }
 
 // The first step of IntersectSheared, small enough to sit inside the loop: true if the ray

@@ -243,6 +243,38 @@ static void TestSphereQuickRejectChangesNothing() {
               std::to_string(differ) + " differ, " + std::to_string(hits) + " hits)");
 }
 
+// NextAfter, the inline step to the neighbouring number that OffsetRayOrigin and the shape loop
+// use, is the library's nextafter bit for bit: at 0 and -0, the subnormals, the largest
+// numbers, the infinities, NaN, and random bit patterns of every exponent.
+static void TestNextAfterIsTheLibrarys() {
+    typedef std::numeric_limits<real> L;
+    std::vector<real> xs = {0,         -real(0), L::denorm_min(), -L::denorm_min(), L::min(),
+                            -L::min(), L::max(), -L::max(),       kInfinity,        -kInfinity,
+                            1,         -1,       real(0.1)};
+    TestRng rng = {7};
+    for (int k = 0; k < 20000; k++) {
+        uint64_t wide = rng.state = rng.state * 6364136223846793005ULL + 1442695040888963407ULL;
+        real x;
+        if (sizeof x == 4) {
+            uint32_t bits = (uint32_t)(wide >> 32);
+            memcpy(&x, &bits, sizeof x);
+        } else {
+            memcpy(&x, &wide, sizeof x);
+        }
+        xs.push_back(x);
+    }
+    int differ = 0;
+    for (real x : xs)
+        for (bool up : {true, false}) {
+            real mine = NextAfter(x, up), theirs = std::nextafter(x, up ? kInfinity : -kInfinity);
+            differ +=
+                memcmp(&mine, &theirs, sizeof mine) != 0 && !(mine != mine && theirs != theirs);
+        }
+    CHECK(differ == 0, "NextAfter is nextafter, bit for bit, both ways for " +
+                           std::to_string(xs.size()) + " numbers (" + std::to_string(differ) +
+                           " differ)");
+}
+
 void TestGeometry() {
     TestSphereTable(IntersectSphere, "stable");
     TestSphereTable(IntersectSphereTextbook, "textbook");
@@ -250,4 +282,5 @@ void TestGeometry() {
     TestSphereHitRecord();
     TestSphereSpawnedRaysDoNotReHit();
     TestSphereQuickRejectChangesNothing();
+    TestNextAfterIsTheLibrarys();
 }
