@@ -66,7 +66,7 @@ static bool SetHandoutTriangleHit(const Triangle *tri, const Ray *ray, real t, R
 // rule, with the variables A..M of the slide (Shirley & Marschner, Fundamentals of Computer
 // Graphics, §4.4.2). Kept for teaching and for the benchmark: it is not watertight, because each
 // triangle rounds its shared edges differently, so rays through an edge can slip between two
-// triangles (see the README's robustness section).
+// triangles (see docs/robustness.md).
 bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                              RayHit *hit) {
     vec3 a = tri->a, b = tri->b, c = tri->c, e = ray->origin, d = ray->dir;

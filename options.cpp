@@ -12,7 +12,7 @@ const char *kUsage =
     "usage: ray [SCENE] [options]\n"
     "\n"
     "SCENE is `default` (the assignment scene, also when omitted), `test` (rt's own scene)\n"
-    "or the path of a scene file (see the README for the format).\n"
+    "or the path of a scene file (README.md and docs/scene-format.md give the format).\n"
     "\n"
     "rendering:\n"
     "  -o FILE                  output image, .png or .ppm (default: reference.png for default, "

@@ -872,8 +872,7 @@ bool ParseReal(const std::string &token, real *value, std::string *error);
 // otherwise. Shared by the scene reader and the command line.
 bool ParseWholeNumber(const std::string &token, int lo, int hi, int *value, std::string *error);
 
-// ---- scene_file.cpp: scene files (the README, "Scene files")
-// -------------------------------------------
+// ---- scene_file.cpp: scene files (docs/scene-format.md) -----------------------------------------
 
 // The scene a file starts from: nothing in it, 512 x 512, `camera perspective 0 0 0 2 2`,
 // ambient 0.2, floor shading, black background, depth 10.
@@ -886,7 +885,7 @@ bool ReadSceneFile(const char *path, Scene *scene, std::string *error);
 bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
                     std::string *error);
 
-// ---- mesh.cpp: Wavefront OBJ meshes (the README, "Meshes") -----------------------------------
+// ---- mesh.cpp: Wavefront OBJ meshes (docs/scene-format.md) --------------------------------------
 
 // One transform word of a `mesh` statement; the words move every vertex in the order written.
 enum MeshStepKind { MESH_SCALE, MESH_ROTATE, MESH_TRANSLATE };
@@ -924,8 +923,7 @@ std::string MeshPath(const char *sceneFile, const std::string &path);
 bool ReadMeshStatement(const std::vector<std::string> &tokens, const char *sceneFile, int line,
                        int material, size_t maxTriangles, Scene *scene, std::string *error);
 
-// ---- probe.cpp: probes and ray trees (the README, "Probes and debugging")
-// -----------------------------------------
+// ---- probe.cpp: probes and ray trees (docs/command-line.md) -------------------------------------
 
 // Reads a probe line `OX OY OZ DX DY DZ`. Returns false with *error for a bad line; sets *blank
 // (and returns true) for a blank or comment line.

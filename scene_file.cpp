@@ -1,4 +1,4 @@
-// scene_file.cpp -- reads scene files (the README, "Scene files") into a Scene.
+// scene_file.cpp -- reads scene files (docs/scene-format.md) into a Scene.
 //
 // One statement a line, `#` comments, tokens between spaces or tabs. Every statement is checked
 // as it is read, and the first problem ends the read with "FILE:LINE: message", the way a
