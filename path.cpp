@@ -222,7 +222,7 @@ static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
         return {0, 0, 0};
     int material = e->shape == SHAPE_SPHERE ? path->scene->spheres[e->index].material
                                             : path->scene->triangles[e->index].material;
-    real pdf = EmitterPdf(emitters.size(), EmitterArea(path->scene, e), dist2, cosLight);
+    real pdf = EmitterPdf(emitters.size(), e->area, dist2, cosLight);
     real weight = path->settings->path.lights == LIGHTS_MIS && !last // (no scattered ray follows
                       ? PowerHeuristic(pdf, ScatterPdf(path->settings->path.scatter, cosTheta))
                       : 1; // the last vertex to share the light with)
@@ -238,7 +238,7 @@ static real EmissionWeight(const Path *path, const RayHit *hit) {
         return 1;
     if (lights == LIGHTS_NEE)
         return 0;
-    Emitter e = {hit->shape, hit->index};
+    Emitter e = {hit->shape, hit->index, 0};
     real distance = hit->t * SafeLength(path->ray.dir);
     real cosLight = std::fabs(Dot(hit->normal, path->ray.dir)) / SafeLength(path->ray.dir);
     real pdf = EmitterPdf(path->settings->effects.emitters.size(), EmitterArea(path->scene, &e),

@@ -95,12 +95,12 @@ static Wide3 WideCross(Wide3 a, Wide3 b) {
 
 // ---- the two tiers ------------------------------------------------------------------------
 
-// The triangle and the ray in double: the corners, the triangle's set-up (its rounded normal,
-// from edges times 2^scale: SetUpTriangle), the ray.
+// The triangle and the ray in double: corner a (tier 2 widens b and c itself), the triangle's
+// set-up (its rounded normal, from edges times 2^scale: SetUpTriangle), the ray.
 struct PlaneProblem {
-    dvec3 a, b, c; // corners
+    const Triangle *tri;
     const TriangleSetUp *fixed;
-    dvec3 origin, dir;
+    dvec3 a, origin, dir;
 };
 
 // t and a bound on |t - t*|, where t* is the exact t of the exact plane through a, b, c.
@@ -137,7 +137,8 @@ static double PlainError(const PlaneProblem *p, dvec3 toA, double t, double deno
 // two sums to double and dividing adds 3 u of t.
 static PlaneT WidePlaneT(const PlaneProblem *p) {
     int k = p->fixed->scale;
-    Wide3 e1 = ExactDifference(p->b, p->a, k), e2 = ExactDifference(p->c, p->a, k);
+    dvec3 b = Widen(p->tri->b), c = Widen(p->tri->c);
+    Wide3 e1 = ExactDifference(b, p->a, k), e2 = ExactDifference(c, p->a, k);
     Wide3 n = WideCross(e1, e2), toA = ExactDifference(p->a, p->origin, 0);
     Wide3 d = {{p->dir.x, 0}, {p->dir.y, 0}, {p->dir.z, 0}};
     Wide numerator = WideDot(n, toA), denominator = WideDot(n, d);
@@ -291,8 +292,7 @@ bool RobustPlaneHit(const Triangle *tri, const TriangleSetUp *setUp, const Ray *
         SetUpTriangle(tri, &own), setUp = &own;
     if (!setUp->hasArea)
         return false; // no area: no plane, no normal
-    PlaneProblem p = {Widen(tri->a), Widen(tri->b),      Widen(tri->c),
-                      setUp,         Widen(ray->origin), Widen(ray->dir)};
+    PlaneProblem p = {tri, setUp, Widen(tri->a), Widen(ray->origin), Widen(ray->dir)};
     Window window = {&setUp->box, ray, false, 0, 0};
     PlaneT plane;
     if (!FindPlaneT(&p, &window, tMin, tMax, &plane))

@@ -324,6 +324,7 @@ const Methods kHandoutMethods = {SPHERE_TEXTBOOK, TRIANGLE_CRAMER,   SELF_HIT_EP
 struct Emitter {
     ShapeKind shape;
     int index;
+    real area; // EmitterArea, once per render (every light sample divides by it)
 };
 
 // Which effects a render can need, decided once per render from the scene and the settings

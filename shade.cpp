@@ -24,16 +24,16 @@ static void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters) {
     // (A shape without area, or of an area beyond the range of numbers, can be neither hit nor
     // sampled: it is left out, so no density is ever divided by 0 or infinity.)
     auto add = [scene, emitters](Emitter e) {
-        real area = EmitterArea(scene, &e);
-        if (area > 0 && std::isfinite(area))
+        e.area = EmitterArea(scene, &e);
+        if (e.area > 0 && std::isfinite(e.area))
             emitters->push_back(e);
     };
     for (int i = 0; i < (int)scene->spheres.size(); i++)
         if (emits(scene->spheres[i].material))
-            add({SHAPE_SPHERE, i});
+            add({SHAPE_SPHERE, i, 0});
     for (int i = 0; i < (int)scene->triangles.size(); i++)
         if (emits(scene->triangles[i].material))
-            add({SHAPE_TRIANGLE, i});
+            add({SHAPE_TRIANGLE, i, 0});
 }
 
 void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects) {
