@@ -22,10 +22,12 @@
 //   bench timemem PROGRAM ARGS...   the same, and the program's peak resident memory in MB
 //
 // Every time is the median of at least kRuns renders in this process, and of as many as fit in
-// kMinSeconds (render only, all threads); errors
-// are against a converged reference: double, 256 samples per pixel on a grid.
+// kMinSeconds (render only, all threads), with the fastest and the slowest of them beside it
+// (the CSV's last columns, seconds_min and seconds_max); errors are against a converged
+// reference: double, 256 samples per pixel on a grid.
 #include "../tests/hard_cases.h"
 #include "ray.h"
+#include "svg.h"
 
 #include <algorithm>
 #include <chrono>
@@ -61,8 +63,8 @@ static RenderSettings Settings(const BenchScene &b, int spp, SampleMethod sampli
 }
 
 // Renders at least kRuns times and for at least kMinSeconds (a 20 ms render needs more runs for
-// a steady median); returns the median seconds, the last image and its rays.
-static double TimeRender(const Scene *scene, const RenderSettings *s, Image *image,
+// a steady median); returns the seconds' median, min and max, the last image and its rays.
+static Spread TimeRender(const Scene *scene, const RenderSettings *s, Image *image,
                          uint64_t *rays) {
     std::vector<double> times;
     double total = 0;
@@ -75,8 +77,7 @@ static double TimeRender(const Scene *scene, const RenderSettings *s, Image *ima
         total += times.back();
         *rays = stats.primary + stats.shadow + stats.reflection + stats.refraction;
     }
-    std::sort(times.begin(), times.end());
-    return times[times.size() / 2];
+    return SpreadOf(times);
 }
 
 // RMSE and PSNR over channels, and the share of pixels off by more than 1/255 and 8/255.
@@ -109,14 +110,16 @@ static void WriteHeatMap(const char *path, const Image *image, const Image *refe
 }
 
 static void PrintRow(const BenchScene &b, const char *knob, const std::string &setting, int spp,
-                     double seconds, uint64_t rays, const Image *image, const Image *against) {
+                     const Spread &seconds, uint64_t rays, const Image *image,
+                     const Image *against) {
     double rmse, psnr, off1, off8;
     ErrorOf(image, against, &rmse, &psnr, &off1, &off8);
-    printf("%s,%s,%s,%d,%.5f,%llu,%.6f,%.3f,%.6f,%.6f\n", b.name, knob, setting.c_str(), spp,
-           seconds, (unsigned long long)rays, rmse, psnr, off1, off8);
+    printf("%s,%s,%s,%d,%.5f,%llu,%.6f,%.3f,%.6f,%.6f,%.5f,%.5f\n", b.name, knob, setting.c_str(),
+           spp, seconds.median, (unsigned long long)rays, rmse, psnr, off1, off8, seconds.min,
+           seconds.max);
     fflush(stdout);
-    fprintf(stderr, "bench: %-10s %-10s %-28s %4d spp %8.3f s  rmse %.4f\n", b.name, knob,
-            setting.c_str(), spp, seconds, rmse);
+    fprintf(stderr, "bench: %-10s %-10s %-28s %4d spp %s s  rmse %.4f\n", b.name, knob,
+            setting.c_str(), spp, SpreadText(seconds, "%.3f").c_str(), rmse);
 }
 
 // One row: render, time, compare with the reference, print the CSV line and a progress line.
@@ -127,7 +130,7 @@ static void Row(const std::string &dir, const BenchScene &b, const Scene *scene,
                 const char *heatMap, const Image *base = nullptr) {
     Image image;
     uint64_t rays = 0;
-    double seconds = TimeRender(scene, s, &image, &rays);
+    Spread seconds = TimeRender(scene, s, &image, &rays);
     PrintRow(b, knob, setting, s->samplesPerPixel, seconds, rays, &image, reference);
     if (base)
         PrintRow(b, "difference", setting, s->samplesPerPixel, seconds, rays, &image, base);
@@ -219,15 +222,20 @@ static void HardCaseRows() {
                  {"textbook+cramer", IntersectSphereTextbook, IntersectTriangleCramer}};
     for (const auto &p : pairs) {
         std::vector<HardCaseResult> results;
-        auto start = std::chrono::steady_clock::now();
-        RunHardCases(p.sphere, p.triangle, &results);
-        double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::vector<double> times;
+        for (int run = 0; run < kRuns; run++) {
+            results.clear();
+            auto start = std::chrono::steady_clock::now();
+            RunHardCases(p.sphere, p.triangle, &results);
+            times.push_back(
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        }
+        Spread seconds = SpreadOf(times);
         int passed = 0;
         for (const HardCaseResult &r : results)
             passed += r.passed;
-        printf("hard_cases,suite,%s %s %d/%d,0,%.5f,0,,,,\n", p.name, kPrecision, passed,
-               (int)results.size(), seconds);
+        printf("hard_cases,suite,%s %s %d/%d,0,%.5f,0,,,,,%.5f,%.5f\n", p.name, kPrecision, passed,
+               (int)results.size(), seconds.median, seconds.min, seconds.max);
         fprintf(stderr, "bench: hard cases %-20s %-6s %d of %d rows pass\n", p.name, kPrecision,
                 passed, (int)results.size());
     }

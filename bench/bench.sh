@@ -174,7 +174,7 @@ echo "bench: effects done" >&2
 echo "bench: robustness and methods done" >&2
 
 # What accuracy costs in time: results.csv, results.md, accuracy_vs_time.svg, heat maps
-echo "scene,knob,setting,spp,seconds,rays,rmse,psnr,off1,off8" >"$dir/results.csv"
+echo "scene,knob,setting,spp,seconds,rays,rmse,psnr,off1,off8,seconds_min,seconds_max" >"$dir/results.csv"
 build/double/rtbench rows "$dir" >>"$dir/results.csv"
 build/float/rtbench rows "$dir" >>"$dir/results.csv"
 build/double/rtbench report "$dir"

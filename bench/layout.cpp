@@ -7,6 +7,7 @@
 // see the same machine load; min and max are printed beside it. Writes DIR/layout.md (the
 // table) and DIR/layout.svg (the log-log plot).
 #include "ray.h"
+#include "svg.h"
 
 #include <algorithm>
 #include <chrono>
@@ -26,7 +27,8 @@ static Scene SphereMesh(int level) {
     Scene scene;
     InitScene(&scene);
     scene.width = scene.height = 256;
-    scene.materials = {{"white", {real(0.9), real(0.9), real(0.9)}, {1, 1, 1}, 0, 1, 0, 0, {0, 0, 0}}};
+    scene.materials = {
+        {"white", {real(0.9), real(0.9), real(0.9)}, {1, 1, 1}, 0, 1, 0, 0, {0, 0, 0}}};
     scene.lights = {{{3, 5, 0}, {1, 1, 1}}};
     vec3 p[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     int f[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
@@ -108,42 +110,70 @@ static std::string Cell(const Timing &t) {
     return text;
 }
 
-// The log-log plot: render time against triangles, the list and the BVH.
+// One line of the plot: its points (median, a whisker from min to max) and, by its last point,
+// its name.
+static std::string PlotLine(const std::vector<Row> &rows, bool tree, const SvgAxis &x,
+                            const SvgAxis &y, SvgLabels *labels) {
+    const char *colour = tree ? "steelblue" : "crimson";
+    std::string points, marks;
+    double lastX = -1, lastY = -1;
+    for (const Row &r : rows) {
+        const Timing &t = tree ? r.tree : r.list;
+        if (t.ms.empty())
+            continue;
+        double px = AxisPixel(x, (double)r.triangles), py = AxisPixel(y, t.Median());
+        double lo = AxisPixel(y, t.Min()), hi = AxisPixel(y, t.Max());
+        points += Format("%.1f,%.1f ", px, py);
+        marks += Format("<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='%s'/>\n<circle "
+                        "cx='%.1f' cy='%.1f' r='3' fill='%s'/>\n",
+                        px, lo, px, hi, colour, px, py, colour);
+        AddMarker(labels, px, py, 3), AddLine(labels, px, lo, px, hi, true);
+        if (lastX >= 0)
+            AddLine(labels, lastX, lastY, px, py, false);
+        lastX = px, lastY = py;
+    }
+    return Format("<polyline points='%s' fill='none' stroke='%s' stroke-width='2'/>\n%s",
+                  points.c_str(), colour, marks.c_str());
+}
+
+// The log-log plot: render time (256 x 256, one thread) against triangles, the list and the BVH.
 static void WritePlot(const std::vector<Row> &rows, const std::string &path) {
     FILE *svg = fopen(path.c_str(), "w");
     if (!svg)
         return;
-    fprintf(svg, "<svg xmlns='http://www.w3.org/2000/svg' width='640' height='400' "
-                 "font-family='sans-serif' font-size='12'>\n<rect width='640' height='400' "
-                 "fill='white'/>\n<line x1='70' y1='340' x2='610' y2='340' stroke='black'/>\n"
-                 "<line x1='70' y1='20' x2='70' y2='340' stroke='black'/>\n"
-                 "<text x='340' y='385' text-anchor='middle'>triangles (log)</text>\n"
-                 "<text x='18' y='180' transform='rotate(-90 18 180)' text-anchor='middle'>"
-                 "render ms, 256 x 256, one thread (log)</text>\n");
-    auto x = [](double n) { return 70 + 540 * (std::log10(n) - 1) / 5.0; };    // 10 .. 1e6
-    auto y = [](double ms) { return 340 - 320 * (std::log10(ms) + 1) / 6.0; }; // 0.1 .. 1e5
-    for (int d = 1; d <= 6; d++)
-        fprintf(svg, "<text x='%.0f' y='356' text-anchor='middle'>1e%d</text>\n",
-                x(std::pow(10, d)), d);
-    for (int d = -1; d <= 5; d++)
-        fprintf(svg, "<text x='64' y='%.0f' text-anchor='end'>%g</text>\n", y(std::pow(10, d)) + 4,
-                std::pow(10, d));
-    const char *colours[2] = {"crimson", "steelblue"};
-    for (int which = 0; which < 2; which++) {
-        std::string points;
-        for (const Row &r : rows) {
-            const Timing &t = which == 0 ? r.list : r.tree;
+    double fewest = 1e30, most = 0, fast = 1e30, slow = 0;
+    for (const Row &r : rows)
+        for (const Timing *t : {&r.list, &r.tree})
+            if (!t->ms.empty())
+                fewest = std::min(fewest, (double)r.triangles),
+                most = std::max(most, (double)r.triangles), fast = std::min(fast, t->Min()),
+                slow = std::max(slow, t->Max());
+    if (most <= 0) {
+        fclose(svg);
+        return;
+    }
+    SvgAxis x = FitAxis(fewest, most, true, 80, 620), y = FitAxis(fast, slow, true, 330, 20);
+    SvgLabels labels = {FrameBox(x, y), {}, {}, {}, {}, {}, {}};
+    std::string lines = PlotLine(rows, false, x, y, &labels) + PlotLine(rows, true, x, y, &labels);
+    for (bool tree : {false, true})
+        for (auto r = rows.rbegin(); r != rows.rend(); ++r) { // the line's name by its last point
+            const Timing &t = tree ? r->tree : r->list;
             if (t.ms.empty())
                 continue;
-            char p[64];
-            snprintf(p, sizeof p, "%.1f,%.1f ", x((double)r.triangles), y(t.Median()));
-            points += p;
+            lines +=
+                PlaceLabel(&labels, AxisPixel(x, (double)r->triangles), AxisPixel(y, t.Median()), 3,
+                           tree ? "BVH (binned SAH)" : "one list of blocks",
+                           tree ? "steelblue" : "crimson", 12);
+            break;
         }
-        fprintf(svg, "<polyline points='%s' fill='none' stroke='%s' stroke-width='2'/>\n",
-                points.c_str(), colours[which]);
-    }
-    fprintf(svg, "<text x='90' y='40' fill='crimson'>one list of blocks</text>\n"
-                 "<text x='90' y='58' fill='steelblue'>BVH (binned SAH)</text>\n</svg>\n");
+    int height = 384 + 16 * (int)labels.legend.size();
+    fprintf(svg,
+            "<svg xmlns='http://www.w3.org/2000/svg' width='640' height='%d' "
+            "font-family='sans-serif' font-size='12'>\n<rect width='640' height='%d' "
+            "fill='white'/>\n%s%s%s</svg>\n",
+            height, height,
+            SvgFrame(x, y, "triangles (log)", "render ms (log; median, min to max)").c_str(),
+            lines.c_str(), SvgLegend(labels, 80, 388, 16).c_str());
     fclose(svg);
 }
 

@@ -8,6 +8,7 @@
 // shared edge may take either triangle, both right). Prints Markdown.
 #include "../tests/hard_cases.h"
 #include "../tests/robust_scenes.h"
+#include "svg.h"
 
 #include <algorithm>
 #include <chrono>
@@ -18,9 +19,9 @@
 
 static const bool kDouble = sizeof(real) == sizeof(double);
 
-// Nanoseconds per call of test(ray k) over the rays, the best of 5 rounds of at least 20 ms.
-template <typename Test> static double NanosecondsPerCall(const std::vector<Ray> &rays, Test test) {
-    double best = 1e30;
+// Nanoseconds per call of test(ray k) over the rays, in 5 rounds of at least 20 ms each.
+template <typename Test> static Spread NanosecondsPerCall(const std::vector<Ray> &rays, Test test) {
+    std::vector<double> rounds;
     for (int round = 0; round < 5; round++) {
         long calls = 0;
         int sink = 0;
@@ -33,9 +34,9 @@ template <typename Test> static double NanosecondsPerCall(const std::vector<Ray>
             seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         }
-        best = std::min(best, seconds * 1e9 / calls + sink * 1e-300);
+        rounds.push_back(seconds * 1e9 / calls + sink * 1e-300);
     }
-    return best;
+    return SpreadOf(rounds);
 }
 
 // Rays from around the origin toward random points of a box that holds the shape: about half hit.
@@ -58,9 +59,9 @@ static void TimeRoutine(const char *name, Routine routine, Robust robust) {
     RayHit hit;
     for (const Ray &ray : all)
         (robust(&ray, &hit) ? hits : misses).push_back(ray);
-    double h = NanosecondsPerCall(hits, [&](const Ray *r) { return (int)routine(r, &hit); });
-    double m = NanosecondsPerCall(misses, [&](const Ray *r) { return (int)routine(r, &hit); });
-    printf("| %s | %.1f | %.1f |", name, h, m);
+    Spread h = NanosecondsPerCall(hits, [&](const Ray *r) { return (int)routine(r, &hit); });
+    Spread m = NanosecondsPerCall(misses, [&](const Ray *r) { return (int)routine(r, &hit); });
+    printf("| %s | %s | %s |", name, SpreadText(h, "%.1f").c_str(), SpreadText(m, "%.1f").c_str());
 }
 
 static Image RenderWith(const Scene *scene, Methods methods) {
@@ -133,13 +134,13 @@ static void Classify(const Scene *scene, Methods methods, int i, int j, Kinds *k
 // One point of the plot: a method's render time and the pixels it gets wrong, over all scales.
 struct PlotPoint {
     std::string name;
-    double milliseconds;
+    Spread milliseconds;
     long pixelsOff;
 };
 
-// The render time of the 128 x 128 test scene with `methods`, one thread, median of 3 (ms).
-static double RenderMilliseconds(const Scene &test, Methods methods) {
-    double times[3];
+// The render time of the 128 x 128 test scene with `methods`, one thread, 3 renders (ms).
+static Spread RenderMilliseconds(const Scene &test, Methods methods) {
+    std::vector<double> times(3);
     for (double &t : times) {
         RenderSettings settings = {128,     128,   1,  SAMPLES_GRID, test.depth, 1,
                                    methods, false, {}, {},           {}};
@@ -149,8 +150,7 @@ static double RenderMilliseconds(const Scene &test, Methods methods) {
         Render(&test, &settings, &image, &stats);
         t = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
-    std::sort(times, times + 3);
-    return times[1];
+    return SpreadOf(times);
 }
 
 // The render-time cell and the artefact cells: pixels off the robust image of the same scene,
@@ -162,8 +162,8 @@ static void ArtefactCells(const Scene &test, Methods methods, const char *name,
                                   {real(1e4), 0},
                                   {real(1e6), 0},
                                   {1, kDouble ? real(1e9) : real(1e3)}};
-    double ms = RenderMilliseconds(test, methods);
-    printf(" %.0f |", ms);
+    Spread ms = RenderMilliseconds(test, methods);
+    printf(" %s |", SpreadText(ms, "%.0f").c_str());
     long total = 0;
     Kinds kinds = {0, 0, 0, 0, 0};
     for (const auto &p : placements) {
@@ -180,39 +180,56 @@ static void ArtefactCells(const Scene &test, Methods methods, const char *name,
     plot->push_back({name, ms, total});
 }
 
-// The plot: pixels off (all placements together, on a log scale from 1) against render time,
-// one labelled point per method, as an SVG file.
+// The points (median time, a whisker from min to max) and their names.
+static std::string PlotMarks(const std::vector<PlotPoint> &plot, const SvgAxis &x, const SvgAxis &y,
+                             SvgLabels *labels) {
+    std::vector<SvgMark> names;
+    std::string marks;
+    for (const PlotPoint &p : plot) {
+        double px = AxisPixel(x, p.milliseconds.median), py = AxisPixel(y, 1.0 + p.pixelsOff);
+        double lo = AxisPixel(x, p.milliseconds.min), hi = AxisPixel(x, p.milliseconds.max);
+        const char *fill = p.name.find("handout") != std::string::npos ? "crimson" : "steelblue";
+        marks += Format("<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='%s'/>\n"
+                        "<circle cx='%.1f' cy='%.1f' r='4' fill='%s'/>\n",
+                        lo, py, hi, py, fill, px, py, fill);
+        AddMarker(labels, px, py, 4);
+        AddLine(labels, lo, py, hi, py, true);
+        names.push_back({px, py, 4, p.name, "black", 12});
+    }
+    return marks + PlaceLabels(labels, names);
+}
+
+// The plot: pixels off (all placements together, on a log scale from 1) against render time
+// (median, whiskers from min to max), one labelled point per method, as an SVG file.
 static void WritePlot(const std::vector<PlotPoint> &plot, const std::string &path) {
     FILE *svg = fopen(path.c_str(), "w");
     if (!svg)
         return;
-    double most = 1;
+    double fast = 1e30, slow = 0, most = 1;
     for (const PlotPoint &p : plot)
-        most = std::max(most, p.milliseconds);
+        fast = std::min(fast, p.milliseconds.min), slow = std::max(slow, p.milliseconds.max),
+        most = std::max(most, 1.0 + p.pixelsOff);
+    SvgAxis x = FitAxis(fast, slow, false, 80, 780), y = FitAxis(1, most, true, 330, 20);
+    SvgLabels labels = {FrameBox(x, y), {}, {}, {}, {}, {}, {}};
+    std::string marks = PlotMarks(plot, x, y, &labels);
+    int height = 404 + 16 * (int)labels.legend.size();
+    std::string xTitle = Format("render time of the test scene, ms (%s, one thread; median, "
+                                "line from min to max of 3)",
+                                kDouble ? "double" : "float");
     fprintf(svg,
-            "<svg xmlns='http://www.w3.org/2000/svg' width='800' height='400' "
-            "font-family='sans-serif' font-size='11'>\n<rect width='800' height='400' "
-            "fill='white'/>\n<line x1='60' y1='350' x2='620' y2='350' stroke='black'/>\n"
-            "<line x1='60' y1='20' x2='60' y2='350' stroke='black'/>\n"
-            "<text x='340' y='385' text-anchor='middle'>render time of the test scene, ms "
-            "(%s, one thread)</text>\n<text x='15' y='185' transform='rotate(-90 15 185)' "
-            "text-anchor='middle'>1 + pixels off the robust image, all scales (log)</text>\n",
-            kDouble ? "double" : "float");
-    for (int tick = 0; tick <= 4; tick++) // the time axis: 0 to 1.1 times the longest render
-        fprintf(svg, "<text x='%.1f' y='365' text-anchor='middle'>%.0f</text>\n",
-                60 + 540 * tick / 4.0, most * 1.1 * tick / 4);
-    for (int decade = 0; decade <= 4; decade++)
-        fprintf(svg, "<text x='55' y='%d' text-anchor='end'>%g</text>\n", 350 - 80 * decade + 4,
-                std::pow(10.0, decade));
-    for (size_t k = 0; k < plot.size(); k++) {
-        double x = 60 + 540 * plot[k].milliseconds / (most * 1.1);
-        double y = 350 - 80 * std::log10(1.0 + plot[k].pixelsOff);
-        fprintf(svg, "<circle cx='%.1f' cy='%.1f' r='4' fill='%s'/>\n", x, y,
-                plot[k].name.find("handout") != std::string::npos ? "crimson" : "steelblue");
-        fprintf(svg, "<text x='%.1f' y='%.1f'>%s</text>\n", x + 7, y - 6 - 11.0 * (k % 3),
-                plot[k].name.c_str());
-    }
-    fprintf(svg, "</svg>\n");
+            "<svg xmlns='http://www.w3.org/2000/svg' width='800' height='%d' "
+            "font-family='sans-serif' font-size='12'>\n<rect width='800' height='%d' "
+            "fill='white'/>\n",
+            height, height);
+    fprintf(
+        svg, "%s%s",
+        SvgFrame(x, y, xTitle.c_str(), "1 + pixels off the robust image, all scales (log)").c_str(),
+        marks.c_str());
+    fprintf(svg,
+            "<circle cx='84' cy='384' r='4' fill='crimson'/><text x='92' y='388'>a handout's "
+            "method</text>\n<circle cx='234' cy='384' r='4' fill='steelblue'/><text x='242' "
+            "y='388'>rt's methods</text>\n%s</svg>\n",
+            SvgLegend(labels, 80, 406, 16).c_str());
     fclose(svg);
 }
 
@@ -315,7 +332,9 @@ int MethodsTable(const char *folder) {
                        std::string(folder) +
                            (kDouble ? "/epsilon_at_1e-4.png" : "/epsilon_at_1e4_float.png"));
     }
-    printf("### What each method costs and buys, %s\n\n", kDouble ? "double" : "float");
+    printf("### What each method costs and buys, %s\n\nTimes are median (min-max): ns of 5 rounds "
+           "of at least 20 ms, render ms of 3 renders (128 x 128, one thread).\n\n",
+           kDouble ? "double" : "float");
     printf("| method | ns, hit | ns, miss | hard cases | render ms | off at 1e-4 | off at 1 | "
            "off at 1e4 | off at 1e6 | off far away | acne / lost shadows / wrong surface / ties / "
            "other |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
