@@ -32,7 +32,7 @@ static void TestProbeRays() {
     CHECK(ProbeRayJson(&scene, &settings, &ahead) ==
               "{\"hit\":true,\"t\":14,\"point\":[0,0,-14],\"normal\":[0,0,1],\"front\":true,"
               "\"shape\":\"sphere\",\"index\":0,\"material\":\"mirror\"}",
-          "probe straight ahead: sphere 0 at t = 14, the SPEC's JSON exactly");
+          "probe straight ahead: sphere 0 at t = 14, the README's JSON exactly");
 
     // Down and ahead, d = (1, -1, -6): the floor y = -2 at t = 2, point (2, -2, -12); it lies
     // on the floor's second triangle (z = -12 is beyond the diagonal's -13.75 at x = 2)

@@ -55,7 +55,7 @@ static void TestDefaultRun(const std::string &dir) {
           "reference.png is an 8-bit RGB PNG (IHDR bit depth 8, colour type 2)");
     CHECK(err.find("\nrays: primary=262144 shadow=") != std::string::npos &&
               err.find(" refraction=0 diffuse=0 total=") != std::string::npos,
-          "--stats prints the SPEC's rays: line");
+          "--stats prints the rays: line as docs/command-line.md shows it");
     CHECK(err.find("\neffects: shadows reflection\n") != std::string::npos,
           "--stats: the assignment scene uses shadows and reflection, nothing else");
 
