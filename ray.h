@@ -214,7 +214,7 @@ struct TriangleSetUp {
     Box box;
     int scale;    // the edges are multiplied by 2^scale before their cross product
     dvec3 n;      // (b - a) 2^scale x (c - a) 2^scale, rounded
-    dvec3 nTerms; // the sizes of the two products in each component of n: its error scales so
+    dvec3 nTerms; // per component of n, its two products' sizes (its rounding scales with them)
     vec3 normal;  // n / |n|, for shading
     bool hasArea; // n is neither 0 nor beyond the range of numbers
 };
