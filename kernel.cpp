@@ -209,10 +209,13 @@ const int kMaxDepth = 128;
 static RT_INLINE void PushChildren(const BvhNode *n, const Search *s, Pending *stack, int *top) {
     Quad near, far;
     ChildWindows(n, &s->slab, &near, &far);
+    Quad tMin, tMax;
+    SplatQuad(&tMin, s->tMin), SplatQuad(&tMax, s->tMax);
+    QuadMask open = (near <= far) & (near <= tMax) & (far >= tMin); // all four at once
     Pending hit[kWidth];
     int count = 0;
     for (int k = 0; k < kWidth; k++) {
-        if (n->blocks[k] < 0 || !(near[k] <= far[k] && near[k] <= s->tMax && far[k] >= s->tMin))
+        if (!open[k] || n->blocks[k] < 0)
             continue;
         int at = count++; // insertion by near, farthest first
         while (at > 0 && hit[at - 1].near < near[k])
