@@ -42,6 +42,10 @@ static double GammaD(int n) { return n * kU / (1 - n * kU); }
 // what tier 1 gives a ray that meets an axis-aligned wall head-on, so ordinary hits stay in tier 1.
 const double kPlainRelativeError = 32 * (double)kUnitRoundoff;
 
+// Tier 1's bound is first order; FirstOrderHolds believes it only while the normal's error and
+// n.d's error are each within this share of what they are errors of (reasoning there).
+const double kFirstOrderShare = 1.0 / 1024;
+
 // ---- double-double arithmetic (tier 2) ------------------------------------------------------
 
 // A number carried as the unevaluated sum hi + lo, |lo| <= u |hi|: about twice the digits of
@@ -127,7 +131,7 @@ static double PlainError(const PlaneProblem *p, dvec3 toA, double t, double deno
     double eN = GammaD(4) * DotD(absN, AbsD(toA));
     double eD = GammaD(3) * DotD(absN, AbsD(p->dir));
     dvec3 toCorner = {toA.x - t * p->dir.x, toA.y - t * p->dir.y, toA.z - t * p->dir.z};
-    return PlaneError(t, denominator, eN, eD, Scale(GammaD(5), p->fixed->nTerms), toCorner) +
+    return PlaneError(t, denominator, eN, eD, p->fixed->nError, toCorner) +
            GammaD(1) * std::fabs(t);
 }
 
@@ -171,8 +175,14 @@ void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp) {
     double yz = e1.y * e2.z, zy = e1.z * e2.y, zx = e1.z * e2.x, xz = e1.x * e2.z;
     double xy = e1.x * e2.y, yx = e1.y * e2.x;
     dvec3 n = setUp->n = {yz - zy, zx - xz, xy - yx}; // CrossD(e1, e2), keeping its products
-    setUp->nTerms = {std::fabs(yz) + std::fabs(zy), std::fabs(zx) + std::fabs(xz),
-                     std::fabs(xy) + std::fabs(yx)};
+    // Each component of n: two edge roundings, the products and the subtraction, gamma(5) of
+    // its two products' sizes (Higham 2002, §3.1)
+    dvec3 nTerms = {std::fabs(yz) + std::fabs(zy), std::fabs(zx) + std::fabs(xz),
+                    std::fabs(xy) + std::fabs(yx)};
+    dvec3 e = setUp->nError = Scale(GammaD(5), nTerms);
+    setUp->normalKnown =
+        std::max({e.x, e.y, e.z}) <=
+        kFirstOrderShare * std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
 
     // The unit normal, for shading. A sliver's n may be so small that n.n underflows: then it is
     // scaled by a power of two first, which changes no bit of n / |n|.
@@ -243,14 +253,11 @@ static inline bool IntoWindow(const PlaneProblem *p, Window *w, PlaneT *plane) {
 // in full), what is left out is at most about 2^-9 of what is kept, which PlaneError's factor
 // of 2 covers many times over. A triangle whose corners are nearly in a line, or a ray that all
 // but skims its plane, fails this: its plain t can be off by far more than the bound says.
+// The normal's half depends on the triangle alone: SetUpTriangle decides it (normalKnown).
 static bool FirstOrderHolds(const PlaneProblem *p, double denominator) {
-    const double kSmall = 1.0 / 1024;
-    dvec3 absN = AbsD(p->fixed->n), absD = AbsD(p->dir);
-    dvec3 eNormal = Scale(GammaD(5), p->fixed->nTerms);
-    double eD = GammaD(3) * DotD(absN, absD) + DotD(eNormal, absD);
-    return std::max({eNormal.x, eNormal.y, eNormal.z}) <=
-               kSmall * std::max({absN.x, absN.y, absN.z}) &&
-           eD <= kSmall * std::fabs(denominator);
+    dvec3 absD = AbsD(p->dir);
+    double eD = GammaD(3) * DotD(AbsD(p->fixed->n), absD) + DotD(p->fixed->nError, absD);
+    return p->fixed->normalKnown && eD <= kFirstOrderShare * std::fabs(denominator);
 }
 
 static bool FindPlaneT(const PlaneProblem *p, Window *w, real tMin, real tMax, PlaneT *plane) {

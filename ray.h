@@ -212,11 +212,12 @@ struct dvec3 {
 // committed scene keeps one for each triangle (SceneLayout); the plain loop makes it as it goes.
 struct TriangleSetUp {
     Box box;
-    int scale;    // the edges are multiplied by 2^scale before their cross product
-    dvec3 n;      // (b - a) 2^scale x (c - a) 2^scale, rounded
-    dvec3 nTerms; // per component of n, its two products' sizes (its rounding scales with them)
-    vec3 normal;  // n / |n|, for shading
-    bool hasArea; // n is neither 0 nor beyond the range of numbers
+    int scale;        // the edges are multiplied by 2^scale before their cross product
+    dvec3 n;          // (b - a) 2^scale x (c - a) 2^scale, rounded
+    dvec3 nError;     // per component of n, a bound on its rounding error
+    bool normalKnown; // nError small against n: the first half of FirstOrderHolds (plane.cpp)
+    vec3 normal;      // n / |n|, for shading
+    bool hasArea;     // n is neither 0 nor beyond the range of numbers
 };
 
 struct TriangleBlock {
