@@ -16,20 +16,24 @@
 
 const real kPi = real(3.14159265358979323846);
 
-// Which path a random number belongs to: the pixel, the sample in it, and the render's seed.
+// Which path a random number belongs to: the render's seed, the pixel and the sample in it,
+// already hashed (PathKey), since they stay the same along the whole path.
 struct PathSample {
-    int i, j, s, seed;
+    uint64_t key;
 };
 
 // The random bits for one decision of one path: SplitMix64's finaliser (as the jitter's hash,
 // render.cpp) over the seed, the pixel, the sample, the bounce and the decision, with a word of
-// its own so these never repeat the jitter's numbers.
-static uint64_t PathHash(const PathSample *p, int bounce, int dimension) {
+// its own so these never repeat the jitter's numbers. The first four words are mixed once a path
+// (PathKey), the last once a decision: the same bits as mixing all five every time.
+static PathSample PathKey(int seed, int i, int j, int s) {
     uint64_t z = 0x70617468; // "path"
-    for (uint64_t word : {(uint64_t)p->seed, (uint64_t)p->i, (uint64_t)p->j, (uint64_t)p->s,
-                          (uint64_t)bounce * 16 + (uint64_t)dimension})
+    for (uint64_t word : {(uint64_t)seed, (uint64_t)i, (uint64_t)j, (uint64_t)s})
         z = MixWord(z, word);
-    return z;
+    return {z};
+}
+static uint64_t PathHash(const PathSample *p, int bounce, int dimension) {
+    return MixWord(p->key, (uint64_t)bounce * 16 + (uint64_t)dimension);
 }
 
 // A random number in [0, 1) from 24 of the bits: exact in float too, and below 1.
@@ -334,7 +338,7 @@ static void FinishTree(const Path *path, const std::vector<PathNode> &nodes) {
 
 color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, int i,
                 int j, int s, TraceLog *log) {
-    PathSample sample = {i, j, s, settings->path.seed};
+    PathSample sample = PathKey(settings->path.seed, i, j, s);
     Path path = {scene,     settings, log,         sample,      0, {0, 0, 0},
                  {1, 1, 1}, *primary, kFromTheEye, RAY_PRIMARY, 0};
     std::vector<PathNode> nodes;
