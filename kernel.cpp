@@ -168,30 +168,90 @@ static RT_INLINE void SplatQuad(Quad *v, real x) {
     for (int i = 0; i < kWidth; i++)
         (*v)[i] = x;
 }
-// *to = yes where m is set, else what *to holds
-static RT_INLINE void Select(Quad *to, const QuadMask *m, const Quad *yes) {
-    *to = (Quad)(((QuadMask)*yes & *m) | ((QuadMask)*to & ~*m));
+
+// What every node visit of one ray reuses: SlabRay's numbers, one copy in every lane, and for
+// each axis the plane of a box the ray meets first (entry) and last (exit). SlabInterval takes
+// ((lo - pad) - o) / d and ((hi + pad) - o) / d and then picks first and last by the sign of
+// 1/d; here the sign picks, once per ray, which of a node's arrays each plane is read from and
+// the sign its pad takes (lo - pad is lo + (-pad), exactly: IEEE subtraction is the addition
+// of the negation), so a visit computes the two it needs and selects nothing.
+struct NodeRay {
+    Quad origin[3], inverse[3], originPad, tMin;
+    QuadMask entrySign[3], exitSign[3]; // the sign bit where the plane is lo (its pad subtracted)
+    size_t entry[3], exit[3];           // where that plane's array is in a BvhNode, in bytes
+};
+
+static RT_INLINE void MakeNodeRay(const SlabRay *slab, real tMin, const BvhNode *anyNode,
+                                  NodeRay *r) {
+    const real origin[3] = {slab->origin.x, slab->origin.y, slab->origin.z};
+    const real inverse[3] = {slab->inverse.x, slab->inverse.y, slab->inverse.z};
+    Quad negativeZero;
+    SplatQuad(&negativeZero, -real(0)); // the sign bit alone
+    for (int i = 0; i < 3; i++) {
+        SplatQuad(&r->origin[i], origin[i]), SplatQuad(&r->inverse[i], inverse[i]);
+        const char *node = (const char *)anyNode; // (every node has its arrays at the same places)
+        size_t lo = (const char *)anyNode->lo[i] - node, hi = (const char *)anyNode->hi[i] - node;
+        QuadMask sign = (QuadMask)negativeZero, none = QuadMask{};
+        bool backward = slab->backward[i]; // meets hi before lo
+        r->entry[i] = backward ? hi : lo, r->entrySign[i] = backward ? none : sign;
+        r->exit[i] = backward ? lo : hi, r->exitSign[i] = backward ? sign : none;
+    }
+    SplatQuad(&r->originPad, slab->originPad), SplatQuad(&r->tMin, tMin);
 }
 
-static RT_INLINE void ChildWindows(const BvhNode *n, const SlabRay *r, Quad *tNear, Quad *tFar) {
-    Quad size, allowance, originPad, pad, near, far;
+// One plane of every child's box along an axis, padded, where the ray's line meets it.
+static RT_INLINE void PlaneDistance(const BvhNode *n, size_t plane, const QuadMask *sign,
+                                    const Quad *pad, const Quad *o, const Quad *inv, Quad *t) {
+    Quad p;
+    LoadQuad(&p, (const real *)((const char *)n + plane));
+    *t = ((p + (Quad)((QuadMask)*pad ^ *sign)) - *o) * *inv;
+}
+
+// Each child's window (SlabInterval) cut to the ray's interval [tMin, tMax]: the maximum and
+// the minimum start there instead of at -infinity and infinity, which changes no window that
+// meets the interval (a maximum is the same in any order) and makes the three tests of whether
+// it does one: a window meets [tMin, tMax] exactly when, cut, it is not empty.
+static RT_INLINE void ChildWindows(const BvhNode *n, const NodeRay *r, real tMax, Quad *tNear,
+                                   Quad *tFar) {
+    Quad size, allowance, far;
     LoadQuad(&size, n->size);
-    SplatQuad(&allowance, kBoxAllowance), SplatQuad(&originPad, r->originPad);
-    pad = allowance * size + originPad;
-    SplatQuad(&near, -kInfinity), SplatQuad(&far, kInfinity);
-    const real origin[3] = {r->origin.x, r->origin.y, r->origin.z};
-    const real inverse[3] = {r->inverse.x, r->inverse.y, r->inverse.z};
+    SplatQuad(&allowance, kBoxAllowance);
+    Quad pad = allowance * size + r->originPad;
+    Quad near = r->tMin;
+    SplatQuad(&far, tMax);
     for (int i = 0; i < 3; i++) {
-        Quad lo, hi, o, inv;
-        LoadQuad(&lo, n->lo[i]), LoadQuad(&hi, n->hi[i]);
-        SplatQuad(&o, origin[i]), SplatQuad(&inv, inverse[i]);
-        Quad a = ((lo - pad) - o) * inv, b = ((hi + pad) - o) * inv;
-        Quad first = r->backward[i] ? b : a, last = r->backward[i] ? a : b;
-        QuadMask nearer = first > near, closer = last < far;
-        Select(&near, &nearer, &first); // (NaN compares false: no restriction)
-        Select(&far, &closer, &last);
+        Quad first, last;
+        PlaneDistance(n, r->entry[i], &r->entrySign[i], &pad, &r->origin[i], &r->inverse[i],
+                      &first);
+        PlaneDistance(n, r->exit[i], &r->exitSign[i], &pad, &r->origin[i], &r->inverse[i], &last);
+        near = first > near ? first : near; // (NaN compares false: no restriction)
+        far = last < far ? last : far;
     }
     *tNear = near, *tFar = far;
+}
+
+// The children whose windows meet [tMin, tMax], as one bit a child, child k's at bit 8 k: a
+// byte a child, gathered from the lanes of the vector compare by two shuffles.
+typedef int QuadInts __attribute__((vector_size(kWidth * sizeof(int))));   // a node's child ints
+typedef int LaneInts __attribute__((vector_size(sizeof(Quad))));           // a QuadMask as ints
+typedef char QuadBytes __attribute__((vector_size(kWidth * sizeof(int)))); // QuadInts as bytes
+typedef char ChildBytes __attribute__((vector_size(kWidth)));              // a byte a child
+
+template <bool kWide>
+static RT_INLINE unsigned OpenChildren(const BvhNode *n, const Quad *near, const Quad *far) {
+    QuadMask open = *near <= *far; // all four at once
+    LaneInts lanes;
+    memcpy(&lanes, &open, sizeof lanes);
+    const int R = sizeof(real) / sizeof(int); // a lane's ints: each is all ones, or none
+    QuadInts blocks, child = __builtin_shufflevector(lanes, lanes, 0, R, 2 * R, 3 * R);
+    memcpy(&blocks, n->blocks, sizeof blocks);
+    child &= blocks > -1; // a missing child's box is no box
+    QuadBytes bytes;
+    memcpy(&bytes, &child, sizeof bytes);
+    ChildBytes each = __builtin_shufflevector(bytes, bytes, 0, 4, 8, 12);
+    unsigned bits;
+    memcpy(&bits, &each, sizeof bits);
+    return bits & 0x01010101u;
 }
 
 // A child waiting to be visited, and where its window begins.
@@ -202,28 +262,36 @@ struct Pending {
 
 // Deepest tree the walk can follow: commit.cpp's median splits past depth 48 halve the
 // triangles, so even 2^31 of them stay well inside. Each node visited leaves at most three
-// more children waiting than it takes away.
+// more children waiting (its nearest is visited next).
 const int kMaxDepth = 128;
 
-// The children of node n whose windows meet (tMin, tMax), onto the stack, the nearest on top.
-static RT_INLINE void PushChildren(const BvhNode *n, const Search *s, Pending *stack, int *top) {
+// The open children of node n (OpenChildren): the nearest as *next, the others onto the stack,
+// the nearer on top, so they come off nearest first. Among windows that begin at the same t the
+// later child goes first. False if none is open.
+template <bool kWide>
+static RT_INLINE bool VisitNode(const BvhNode *n, const NodeRay *r, real tMax, Pending *stack,
+                                int *top, Pending *next) {
     Quad near, far;
-    ChildWindows(n, &s->slab, &near, &far);
-    Quad tMin, tMax;
-    SplatQuad(&tMin, s->tMin), SplatQuad(&tMax, s->tMax);
-    QuadMask open = (near <= far) & (near <= tMax) & (far >= tMin); // all four at once
-    Pending hit[kWidth];
-    int count = 0;
-    for (int k = 0; k < kWidth; k++) {
-        if (!open[k] || n->blocks[k] < 0)
-            continue;
-        int at = count++; // insertion by near, farthest first
-        while (at > 0 && hit[at - 1].near < near[k])
-            hit[at] = hit[at - 1], at--;
-        hit[at] = {n->child[k], n->blocks[k], near[k]};
+    ChildWindows(n, r, tMax, &near, &far);
+    unsigned open = OpenChildren<kWide>(n, &near, &far);
+    if (open == 0)
+        return false;
+    int k = __builtin_ctz(open) / 8;
+    if ((open & (open - 1)) == 0) { // one open child, the most common case: no order to find
+        *next = {n->child[k], n->blocks[k], near[k]};
+        return true;
     }
-    for (int k = 0; k < count; k++)
-        stack[(*top)++] = hit[k];
+    Pending *sorted = stack + *top; // farthest first
+    int count = 0;
+    for (; open != 0; open &= open - 1) {
+        int k = __builtin_ctz(open) / 8, at = count++; // insertion by near
+        while (at > 0 && sorted[at - 1].near < near[k])
+            sorted[at] = sorted[at - 1], at--;
+        sorted[at] = {n->child[k], n->blocks[k], near[k]};
+    }
+    *next = sorted[count - 1];
+    *top += count - 1;
+    return true;
 }
 
 // The BVH walk: a child whose window (SlabInterval) misses (tMin, tMax) is skipped, the others
@@ -234,22 +302,26 @@ template <int kz, bool kWide>
 static RT_INLINE bool WalkTree(const SceneLayout *layout, Search *s, RayHit *hit) {
     Pending stack[3 * kMaxDepth + kWidth];
     int top = 0;
-    s->slab = MakeSlabRay(s->ray);
+    SlabRay slab = MakeSlabRay(s->ray);
+    NodeRay r;
+    MakeNodeRay(&slab, s->tMin, &layout->nodes[0], &r);
     bool found = false;
-    PushChildren(&layout->nodes[0], s, stack, &top);
-    while (top > 0) {
-        Pending p = stack[--top];
-        if (p.near > s->tMax)
-            continue;
-        if (p.blocks == 0) {
-            PushChildren(&layout->nodes[p.child], s, stack, &top);
-        } else if (TestBlocks<kz, kWide>(layout->blocks.data(), p.child, p.blocks, s, hit)) {
+    Pending next = {0, 0, -kInfinity}; // the root, whose children are all the triangles
+    for (;;) {
+        if (next.blocks == 0) {
+            if (VisitNode<kWide>(&layout->nodes[next.child], &r, s->tMax, stack, &top, &next))
+                continue;
+        } else if (TestBlocks<kz, kWide>(layout->blocks.data(), next.child, next.blocks, s, hit)) {
             found = true;
             if (s->anyHit)
                 return true;
         }
+        do { // the nearest waiting child that may still hold a hit
+            if (top == 0)
+                return found;
+            next = stack[--top];
+        } while (next.near > s->tMax);
     }
-    return found;
 }
 
 template <int kz, bool kWide>
