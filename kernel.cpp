@@ -265,9 +265,26 @@ struct Pending {
 // more children waiting (its nearest is visited next).
 const int kMaxDepth = 128;
 
+// Three or four open children (bits as OpenChildren gives them) onto the stack by insertion,
+// farthest first, and the nearest off it again as *next.
+static RT_INLINE void SortChildren(const BvhNode *n, unsigned open, const Quad *near,
+                                   Pending *stack, int *top, Pending *next) {
+    Pending *sorted = stack + *top;
+    int count = 0;
+    for (; open != 0; open &= open - 1) {
+        int k = __builtin_ctz(open) / 8, at = count++;
+        while (at > 0 && sorted[at - 1].near < (*near)[k])
+            sorted[at] = sorted[at - 1], at--;
+        sorted[at] = {n->child[k], n->blocks[k], (*near)[k]};
+    }
+    *next = sorted[count - 1];
+    *top += count - 1;
+}
+
 // The open children of node n (OpenChildren): the nearest as *next, the others onto the stack,
 // the nearer on top, so they come off nearest first. Among windows that begin at the same t the
-// later child goes first. False if none is open.
+// later child goes first. False if none is open. One or two open children, nine visits in ten,
+// take no loop.
 template <bool kWide>
 static RT_INLINE bool VisitNode(const BvhNode *n, const NodeRay *r, real tMax, Pending *stack,
                                 int *top, Pending *next) {
@@ -276,21 +293,20 @@ static RT_INLINE bool VisitNode(const BvhNode *n, const NodeRay *r, real tMax, P
     unsigned open = OpenChildren<kWide>(n, &near, &far);
     if (open == 0)
         return false;
+    unsigned rest = open & (open - 1);
     int k = __builtin_ctz(open) / 8;
-    if ((open & (open - 1)) == 0) { // one open child, the most common case: no order to find
+    if (rest == 0) {
         *next = {n->child[k], n->blocks[k], near[k]};
         return true;
     }
-    Pending *sorted = stack + *top; // farthest first
-    int count = 0;
-    for (; open != 0; open &= open - 1) {
-        int k = __builtin_ctz(open) / 8, at = count++; // insertion by near
-        while (at > 0 && sorted[at - 1].near < near[k])
-            sorted[at] = sorted[at - 1], at--;
-        sorted[at] = {n->child[k], n->blocks[k], near[k]};
+    if ((rest & (rest - 1)) != 0) {
+        SortChildren(n, open, &near, stack, top, next);
+        return true;
     }
-    *next = sorted[count - 1];
-    *top += count - 1;
+    int later = __builtin_ctz(rest) / 8;
+    int first = near[later] <= near[k] ? later : k, second = first == k ? later : k;
+    stack[(*top)++] = {n->child[second], n->blocks[second], near[second]};
+    *next = {n->child[first], n->blocks[first], near[first]};
     return true;
 }
 
