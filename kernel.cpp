@@ -211,14 +211,13 @@ static RT_INLINE void PlaneDistance(const BvhNode *n, size_t plane, const QuadMa
 // the minimum start there instead of at -infinity and infinity, which changes no window that
 // meets the interval (a maximum is the same in any order) and makes the three tests of whether
 // it does one: a window meets [tMin, tMax] exactly when, cut, it is not empty.
-static RT_INLINE void ChildWindows(const BvhNode *n, const NodeRay *r, real tMax, Quad *tNear,
-                                   Quad *tFar) {
-    Quad size, allowance, far;
+static RT_INLINE void ChildWindows(const BvhNode *n, const NodeRay *r, const Quad *tMax,
+                                   Quad *tNear, Quad *tFar) {
+    Quad size, allowance;
     LoadQuad(&size, n->size);
     SplatQuad(&allowance, kBoxAllowance);
     Quad pad = allowance * size + r->originPad;
-    Quad near = r->tMin;
-    SplatQuad(&far, tMax);
+    Quad near = r->tMin, far = *tMax;
     for (int i = 0; i < 3; i++) {
         Quad first, last;
         PlaneDistance(n, r->entry[i], &r->entrySign[i], &pad, &r->origin[i], &r->inverse[i],
@@ -286,8 +285,8 @@ static RT_INLINE void SortChildren(const BvhNode *n, unsigned open, const Quad *
 // later child goes first. False if none is open. One or two open children, nine visits in ten,
 // take no loop.
 template <bool kWide>
-static RT_INLINE bool VisitNode(const BvhNode *n, const NodeRay *r, real tMax, Pending *stack,
-                                int *top, Pending *next) {
+static RT_INLINE bool VisitNode(const BvhNode *n, const NodeRay *r, const Quad *tMax,
+                                Pending *stack, int *top, Pending *next) {
     Quad near, far;
     ChildWindows(n, r, tMax, &near, &far);
     unsigned open = OpenChildren<kWide>(n, &near, &far);
@@ -318,19 +317,23 @@ template <int kz, bool kWide>
 static RT_INLINE bool WalkTree(const SceneLayout *layout, Search *s, RayHit *hit) {
     Pending stack[3 * kMaxDepth + kWidth];
     int top = 0;
-    SlabRay slab = MakeSlabRay(s->ray);
+    s->slab = MakeSlabRay(s->ray);
     NodeRay r;
-    MakeNodeRay(&slab, s->tMin, &layout->nodes[0], &r);
+    MakeNodeRay(&s->slab, s->tMin, &layout->nodes[0], &r);
+    const BvhNode *nodes = layout->nodes.data();
+    Quad tMax; // s->tMax in every lane, kept up to date as hits shrink it
+    SplatQuad(&tMax, s->tMax);
     bool found = false;
     Pending next = {0, 0, -kInfinity}; // the root, whose children are all the triangles
     for (;;) {
         if (next.blocks == 0) {
-            if (VisitNode<kWide>(&layout->nodes[next.child], &r, s->tMax, stack, &top, &next))
+            if (VisitNode<kWide>(&nodes[next.child], &r, &tMax, stack, &top, &next))
                 continue;
         } else if (TestBlocks<kz, kWide>(layout->blocks.data(), next.child, next.blocks, s, hit)) {
             found = true;
             if (s->anyHit)
                 return true;
+            SplatQuad(&tMax, s->tMax);
         }
         do { // the nearest waiting child that may still hold a hit
             if (top == 0)
