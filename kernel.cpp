@@ -238,6 +238,12 @@ typedef char ChildBytes __attribute__((vector_size(kWidth)));              // a 
 
 template <bool kWide>
 static RT_INLINE unsigned OpenChildren(const BvhNode *n, const Quad *near, const Quad *far) {
+    if (!kWide) {
+        unsigned bits = 0;
+        for (int k = 0; k < kWidth; k++)
+            bits |= (unsigned)((*near)[k] <= (*far)[k] && n->blocks[k] >= 0) << (8 * k);
+        return bits;
+    }
     QuadMask open = *near <= *far; // all four at once
     LaneInts lanes;
     memcpy(&lanes, &open, sizeof lanes);
