@@ -199,7 +199,8 @@ static RT_INLINE void MakeNodeRay(const SlabRay *slab, real tMin, const BvhNode 
     SplatQuad(&r->originPad, slab->originPad), SplatQuad(&r->tMin, tMin);
 }
 
-// One plane of every child's box along an axis, padded, where the ray's line meets it.
+// Where the ray's line meets one plane of every child's box along axis i (entry or exit, as
+// NodeRay picked it), moved out by the pad: SlabInterval's a or b, the same operations in order.
 static RT_INLINE void PlaneDistance(const BvhNode *n, size_t plane, const QuadMask *sign,
                                     const Quad *pad, const Quad *o, const Quad *inv, Quad *t) {
     Quad p;
@@ -208,9 +209,13 @@ static RT_INLINE void PlaneDistance(const BvhNode *n, size_t plane, const QuadMa
 }
 
 // Each child's window (SlabInterval) cut to the ray's interval [tMin, tMax]: the maximum and
-// the minimum start there instead of at -infinity and infinity, which changes no window that
-// meets the interval (a maximum is the same in any order) and makes the three tests of whether
-// it does one: a window meets [tMin, tMax] exactly when, cut, it is not empty.
+// the minimum start there instead of at -infinity and infinity. A maximum is the same in any
+// order and exact (up to the sign of a zero, which no comparison sees), so this is
+// SlabInterval's window cut afterwards, and the three tests of whether it meets the interval
+// (near <= far, near <= tMax, far >= tMin) become one: the cut window is not empty. (When
+// tMin > tMax every window is empty, and no triangle could be hit anyway.) A window the ray
+// starts inside now begins at tMin, so such children are visited in their order in the node,
+// the later first, which changes no answer.
 static RT_INLINE void ChildWindows(const BvhNode *n, const NodeRay *r, const Quad *tMax,
                                    Quad *tNear, Quad *tFar) {
     Quad size, allowance;
@@ -229,8 +234,11 @@ static RT_INLINE void ChildWindows(const BvhNode *n, const NodeRay *r, const Qua
     *tNear = near, *tFar = far;
 }
 
-// The children whose windows meet [tMin, tMax], as one bit a child, child k's at bit 8 k: a
-// byte a child, gathered from the lanes of the vector compare by two shuffles.
+// The children whose windows meet [tMin, tMax], as one bit a child, child k's at bit 8 k, so
+// the walk takes them by counting zeros instead of looking at each lane. Vector extensions
+// have no "movemask"; two shuffles gather a byte of each lane's compare (all ones or none)
+// into one word, which GCC and clang compile to three instructions with AVX2. Without it the
+// shuffles become a dozen moves through memory, and four scalar compares are cheaper.
 typedef int QuadInts __attribute__((vector_size(kWidth * sizeof(int))));   // a node's child ints
 typedef int LaneInts __attribute__((vector_size(sizeof(Quad))));           // a QuadMask as ints
 typedef char QuadBytes __attribute__((vector_size(kWidth * sizeof(int)))); // QuadInts as bytes
@@ -271,7 +279,8 @@ struct Pending {
 const int kMaxDepth = 128;
 
 // Three or four open children (bits as OpenChildren gives them) onto the stack by insertion,
-// farthest first, and the nearest off it again as *next.
+// farthest first (a later child above an earlier one at the same near), and the nearest off
+// it again as *next. (The stack has room for the fourth for this moment: kWidth above.)
 static RT_INLINE void SortChildren(const BvhNode *n, unsigned open, const Quad *near,
                                    Pending *stack, int *top, Pending *next) {
     Pending *sorted = stack + *top;
@@ -286,10 +295,11 @@ static RT_INLINE void SortChildren(const BvhNode *n, unsigned open, const Quad *
     *top += count - 1;
 }
 
-// The open children of node n (OpenChildren): the nearest as *next, the others onto the stack,
-// the nearer on top, so they come off nearest first. Among windows that begin at the same t the
-// later child goes first. False if none is open. One or two open children, nine visits in ten,
-// take no loop.
+// The open children of node n (OpenChildren): the nearest as *next, to be visited at once,
+// the others onto the stack, the nearer on top, so they come off nearest first. Among windows
+// that begin at the same t the later child goes first. False if none is open. One or two open
+// children (nine visits in ten on a large mesh) take no loop: one is next, and of two the
+// nearer is next and the other waits.
 template <bool kWide>
 static RT_INLINE bool VisitNode(const BvhNode *n, const NodeRay *r, const Quad *tMax,
                                 Pending *stack, int *top, Pending *next) {
@@ -318,7 +328,9 @@ static RT_INLINE bool VisitNode(const BvhNode *n, const NodeRay *r, const Quad *
 // The BVH walk: a child whose window (SlabInterval) misses (tMin, tMax) is skipped, the others
 // are visited nearest first, so the nearest hit shrinks tMax early, and a child whose window
 // begins beyond it by the time its turn comes is skipped too. (A window that begins exactly at
-// tMax is visited: it may hold a tie that an earlier triangle wins.)
+// tMax is visited: it may hold a tie that an earlier triangle wins.) A node's nearest open
+// child is visited next without going through the stack: tMax has not moved since its window
+// was checked.
 template <int kz, bool kWide>
 static RT_INLINE bool WalkTree(const SceneLayout *layout, Search *s, RayHit *hit) {
     Pending stack[3 * kMaxDepth + kWidth];
