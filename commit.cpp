@@ -160,25 +160,31 @@ struct Bins {
 };
 
 // The items' boxes added to the bins of their centroids, the three bins found at once.
+template <bool kWide>
+static RT_INLINE void AddItem(const BuildItem *item, const Quad4 *lo, const Quad4 *scale,
+                              Bin *const base[3]) {
+    Quad4 itemLo, itemHi, centre, last; // (read once: the bins' stores could alias them)
+    Load(&itemLo, item->lo), Load(&itemHi, item->hi), Load(&centre, item->centre);
+    Splat(&last, kBins - 1);
+    Quad4 f = (centre - *lo) * *scale;
+    f = f < last ? f : last; // (before the conversion: the same as after; NaN gives last)
+    Int4 k = __builtin_convertvector(f, Int4);
+    for (int axis = 0; axis < 3; axis++) {
+        Bin *bin = base[axis] + k[axis];
+        bin->count++;
+        GrowBy(&bin->box, &itemLo, &itemHi);
+    }
+}
+
 template <bool kWide> static RT_INLINE void FillBins(const BuildItem *items, int n, Bins *bins) {
     for (int axis = 0; axis < 3; axis++)
         for (int k = 0; k < kBins; k++)
             bins->bin[axis][k] = {EmptyBounds(), 0};
-    Quad4 lo, scale, last, centre;
-    Load(&lo, bins->lo), Load(&scale, bins->scale), Splat(&last, kBins - 1);
+    Quad4 lo, scale;
+    Load(&lo, bins->lo), Load(&scale, bins->scale);
     Bin *const base[3] = {bins->bin[0], bins->bin[1], bins->bin[2]};
-    for (int i = 0; i < n; i++) {
-        Quad4 itemLo, itemHi; // (read once: the bins' stores could alias them)
-        Load(&itemLo, items[i].lo), Load(&itemHi, items[i].hi), Load(&centre, items[i].centre);
-        Quad4 f = (centre - lo) * scale;
-        f = f < last ? f : last; // (before the conversion: the same as after; NaN gives last)
-        Int4 k = __builtin_convertvector(f, Int4);
-        for (int axis = 0; axis < 3; axis++) {
-            Bin *bin = base[axis] + k[axis];
-            bin->count++;
-            GrowBy(&bin->box, &itemLo, &itemHi);
-        }
-    }
+    for (int i = 0; i < n; i++)
+        AddItem<kWide>(&items[i], &lo, &scale, base);
 }
 
 // A split of a node's items: bins below `bin` of `axis` go left; what it costs.
@@ -529,34 +535,55 @@ static void RunBoth(bool threads, const First &first, const Second &second) {
     helper.join();
 }
 
-// The build items of all triangles, and the bounds of the root.
-static void MakeItems(const std::vector<Triangle> &triangles, BuildItem *items, Task *root) {
-    root->bounds = {EmptyBounds(), EmptyBounds()};
-    for (int i = 0; i < (int)triangles.size(); i++) {
-        BuildItem *it = &items[i];
-        Box box = TriangleBox(&triangles[i]);
-        *it = {{box.lo[0], box.lo[1], box.lo[2]}, {box.hi[0], box.hi[1], box.hi[2]}, {}, i, 0};
-        for (int k = 0; k < 3; k++) // halves first: (lo + hi) / 2 could overflow
-            it->centre[k] = box.size < kInfinity ? box.lo[k] / 2 + box.hi[k] / 2 : 0;
-        GrowItem(&root->bounds.box, it), GrowCentre(&root->bounds.centres, it);
+// The build items of triangles [first, last), and their bounds. The box is TriangleBox's, lane
+// by lane: its least and most of three, in its order (so that of -0 and +0 the same one wins),
+// and a triangle with a corner that is not finite gets the infinite box; the centre is
+// lo / 2 + hi / 2, halves first, as (lo + hi) / 2 could overflow, and 0 for the infinite box.
+template <bool kWide>
+static RT_INLINE void MakeItems(const Triangle *triangles, int first, int last, BuildItem *items,
+                                NodeBounds *bounds) {
+    Quad4 half, infinity;
+    Splat(&half, real(0.5)), Splat(&infinity, kInfinity);
+    for (int i = first; i < last; i++) {
+        const Triangle *t = &triangles[i];
+        Quad4 a, b, c = {t->c.x, t->c.y, t->c.z, t->c.z}; // (a and b: the next number is lane 3)
+        Load(&a, &t->a.x), Load(&b, &t->b.x);
+        Quad4 lo = a < b ? a : b, hi = a > b ? a : b;
+        lo = lo < c ? lo : c, hi = hi > c ? hi : c;
+        Quad4 centre = lo * half + hi * half, finite = (a - a) + (b - b) + (c - c);
+        if (!(finite[0] == 0 && finite[1] == 0 && finite[2] == 0 && finite[3] == 0))
+            lo = -infinity, hi = infinity, Splat(&centre, 0);
+        Store(items[i].lo, &lo), Store(items[i].hi, &hi), Store(items[i].centre, &centre);
+        items[i].index = i, items[i].zero = 0;
+        GrowBy(&bounds->box, &lo, &hi), GrowPoint(&bounds->centres, &centre);
     }
+}
+static void MakeItemsPlain(const Triangle *triangles, int first, int last, BuildItem *items,
+                           NodeBounds *bounds) {
+    MakeItems<false>(triangles, first, last, items, bounds);
+}
+RT_AVX2 static void MakeItemsWide(const Triangle *triangles, int first, int last, BuildItem *items,
+                                  NodeBounds *bounds) {
+    MakeItems<true>(triangles, first, last, items, bounds);
 }
 
 static void BuildTree(const std::vector<Triangle> &triangles, SceneLayout *layout) {
     int n = (int)triangles.size();
     bool threads = n >= kThreadMin && std::thread::hardware_concurrency() > 1;
+    bool wide = KernelCanBeWide();
     std::unique_ptr<BuildItem[]> items(new BuildItem[n]);
-    Task root = {0, n, 0, {}};
+    Task root = {0, n, 0, {EmptyBounds(), EmptyBounds()}};
     // New memory costs most where it is first written: it is shared out
     RunBoth(
         threads,
         [&] {
-            MakeItems(triangles, items.get(), &root);
+            (wide ? MakeItemsWide : MakeItemsPlain)(triangles.data(), 0, n, items.get(),
+                                                    &root.bounds);
             layout->blocks.resize(Blocks(n) + Blocks(n) / 16); // most trees need fewer
         },
         [&] { layout->setUps.resize(n); });
     Builder b;
-    b.items = items.get(), b.wide = KernelCanBeWide(), b.next = 0, b.unfinished = 0;
+    b.items = items.get(), b.wide = wide, b.next = 0, b.unfinished = 0;
     AddTask(&b, &root);
     RunBoth(
         threads, [&] { SetUpRange(triangles, 0, n / 2, layout), BuildTasks(&b); },
