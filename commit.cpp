@@ -72,8 +72,8 @@ typedef int Int4 __attribute__((vector_size(16)));
 // Vectors are passed by value only to functions always inlined (kernel.cpp says why).
 #pragma GCC diagnostic ignored "-Wpsabi"
 
-struct Bounds {
-    real lo[4], hi[4]; // read and written as vectors (Load, Store)
+struct alignas(4 * sizeof(real)) Bounds { // (aligned: a vector never straddles two lines)
+    real lo[4], hi[4];                    // read and written as vectors (Load, Store)
 };
 
 static RT_INLINE void Load(Quad4 *v, const real *p) { memcpy(v, p, sizeof *v); }
@@ -142,49 +142,52 @@ static RT_INLINE void GrowItem(Bounds *b, const BuildItem *item) {
     Load(&lo, item->lo), Load(&hi, item->hi);
     GrowBy(b, &lo, &hi);
 }
+// The centre as a vector, its fourth lane 0. (That lane would be the index's bits: a subnormal
+// number, which costs a processor some hundred cycles an operation.)
+static RT_INLINE void LoadCentre(const BuildItem *item, Quad4 *c) {
+    typedef decltype(*c < *c) Mask4;
+    Mask4 keep = {-1, -1, -1, 0};
+    Load(c, item->centre);
+    *c = (Quad4)((Mask4)*c & keep);
+}
 static RT_INLINE void GrowCentre(Bounds *b, const BuildItem *item) {
     Quad4 c;
-    Load(&c, item->centre);
+    LoadCentre(item, &c);
     GrowPoint(b, &c);
 }
 
 // The bins of a node's centroids on all three axes, filled in one pass (Wald 2007, §3.1): per
 // bin, how many and the union of their boxes. An axis whose centroids do not spread has scale 0.
-struct Bin {
-    Bounds box;
-    int count;
-};
 struct Bins {
+    Bounds box[3][kBins];
+    int count[3][kBins];
     real lo[4], scale[4]; // per axis (the fourth is 0)
-    Bin bin[3][kBins];
 };
 
 // The items' boxes added to the bins of their centroids, the three bins found at once.
 template <bool kWide>
 static RT_INLINE void AddItem(const BuildItem *item, const Quad4 *lo, const Quad4 *scale,
-                              Bin *const base[3]) {
+                              Bins *bins) {
     Quad4 itemLo, itemHi, centre, last; // (read once: the bins' stores could alias them)
-    Load(&itemLo, item->lo), Load(&itemHi, item->hi), Load(&centre, item->centre);
+    Load(&itemLo, item->lo), Load(&itemHi, item->hi), LoadCentre(item, &centre);
     Splat(&last, kBins - 1);
     Quad4 f = (centre - *lo) * *scale;
     f = f < last ? f : last; // (before the conversion: the same as after; NaN gives last)
     Int4 k = __builtin_convertvector(f, Int4);
     for (int axis = 0; axis < 3; axis++) {
-        Bin *bin = base[axis] + k[axis];
-        bin->count++;
-        GrowBy(&bin->box, &itemLo, &itemHi);
+        bins->count[axis][k[axis]]++;
+        GrowBy(&bins->box[axis][k[axis]], &itemLo, &itemHi);
     }
 }
 
 template <bool kWide> static RT_INLINE void FillBins(const BuildItem *items, int n, Bins *bins) {
     for (int axis = 0; axis < 3; axis++)
         for (int k = 0; k < kBins; k++)
-            bins->bin[axis][k] = {EmptyBounds(), 0};
+            bins->box[axis][k] = EmptyBounds(), bins->count[axis][k] = 0;
     Quad4 lo, scale;
     Load(&lo, bins->lo), Load(&scale, bins->scale);
-    Bin *const base[3] = {bins->bin[0], bins->bin[1], bins->bin[2]};
     for (int i = 0; i < n; i++)
-        AddItem<kWide>(&items[i], &lo, &scale, base);
+        AddItem<kWide>(&items[i], &lo, &scale, bins);
 }
 
 // A split of a node's items: bins below `bin` of `axis` go left; what it costs.
@@ -198,27 +201,28 @@ struct Split {
 // side times that side's blocks. Only boundaries right after a full bin are tried: one after an
 // empty bin splits the same way, and the first of those is the one a sweep over all finds.
 static RT_INLINE void BestSplit(const Bins *bins, int axis, real nodeArea, Split *best) {
-    const Bin *bin = bins->bin[axis];
+    const Bounds *box = bins->box[axis];
+    const int *count = bins->count[axis];
     int full[kBins], m = 0;
     for (int k = 0; k < kBins; k++)
-        if (bin[k].count > 0)
+        if (count[k] > 0)
             full[m++] = k;
     if (m < 2)
         return;
     real rightCost[kBins]; // area times blocks
-    Bounds right = bin[full[m - 1]].box;
-    int rightCount = bin[full[m - 1]].count;
+    Bounds right = box[full[m - 1]];
+    int rightCount = count[full[m - 1]];
     rightCost[m - 1] = HalfArea(&right) * Blocks(rightCount);
     for (int j = m - 2; j > 0; j--) { // everything in full bins j and above
-        Grow(&right, &bin[full[j]].box);
-        rightCount += bin[full[j]].count;
+        Grow(&right, &box[full[j]]);
+        rightCount += count[full[j]];
         rightCost[j] = HalfArea(&right) * Blocks(rightCount);
     }
-    Bounds left = bin[full[0]].box;
-    int leftCount = bin[full[0]].count;
+    Bounds left = box[full[0]];
+    int leftCount = count[full[0]];
     for (int j = 1; j < m; j++) {
         if (j > 1)
-            Grow(&left, &bin[full[j - 1]].box), leftCount += bin[full[j - 1]].count;
+            Grow(&left, &box[full[j - 1]]), leftCount += count[full[j - 1]];
         real cost = 1 + (HalfArea(&left) * Blocks(leftCount) + rightCost[j]) / nodeArea;
         if (cost < best->cost)
             *best = {cost, axis, full[j - 1] + 1};
@@ -235,8 +239,8 @@ struct NodeBounds {
 static RT_INLINE void SideBoxes(const Bins *bins, const Split *split, NodeBounds side[2]) {
     side[0].box = side[1].box = EmptyBounds();
     for (int k = 0; k < kBins; k++)
-        if (bins->bin[split->axis][k].count > 0)
-            Grow(&side[k >= split->bin].box, &bins->bin[split->axis][k].box);
+        if (bins->count[split->axis][k] > 0)
+            Grow(&side[k >= split->bin].box, &bins->box[split->axis][k]);
 }
 
 // Reorders items[begin, end) so the left ones (by the split) come first, as std::partition
