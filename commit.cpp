@@ -430,6 +430,13 @@ static void BuildTasks(Builder *b) {
     }
 }
 
+// A task done that was not taken from the list (the items, before the root's task is made).
+static void FinishTask(Builder *b) {
+    std::lock_guard<std::mutex> hold(b->lock);
+    if (--b->unfinished == 0)
+        b->wake.notify_all();
+}
+
 // A node of the whole tree: its part (task) and its place there.
 struct NodeRef {
     int task, place;
@@ -577,21 +584,26 @@ static void BuildTree(const std::vector<Triangle> &triangles, SceneLayout *layou
     bool wide = KernelCanBeWide();
     std::unique_ptr<BuildItem[]> items(new BuildItem[n]);
     Task root = {0, n, 0, {EmptyBounds(), EmptyBounds()}};
-    // New memory costs most where it is first written: it is shared out
+    Builder b;
+    b.items = items.get(), b.wide = wide, b.next = 0;
+    b.unfinished = 1; // the items, until the root's task is made
+    // New memory costs most where it is first written (a page fault each 4 KB): one thread
+    // writes the set-ups and the blocks while the other starts the tree
     RunBoth(
         threads,
         [&] {
             (wide ? MakeItemsWide : MakeItemsPlain)(triangles.data(), 0, n, items.get(),
                                                     &root.bounds);
-            layout->blocks.resize(Blocks(n) + Blocks(n) / 16); // most trees need fewer
+            AddTask(&b, &root);
+            FinishTask(&b);
+            BuildTasks(&b);
         },
-        [&] { layout->setUps.resize(n); });
-    Builder b;
-    b.items = items.get(), b.wide = wide, b.next = 0, b.unfinished = 0;
-    AddTask(&b, &root);
-    RunBoth(
-        threads, [&] { SetUpRange(triangles, 0, n / 2, layout), BuildTasks(&b); },
-        [&] { SetUpRange(triangles, n / 2, n, layout), BuildTasks(&b); });
+        [&] {
+            layout->setUps.resize(n);
+            SetUpRange(triangles, 0, n, layout);
+            layout->blocks.resize(Blocks(n) + Blocks(n) / 16); // most trees need fewer
+            BuildTasks(&b);
+        });
     std::vector<NodeRef> leaves;
     int blocks = 0;
     NumberLeaves(&b, {0, 0}, &blocks, &leaves);
@@ -599,7 +611,7 @@ static void BuildTree(const std::vector<Triangle> &triangles, SceneLayout *layou
     RunBoth(
         threads, [&] { FillLeaves(&b, triangles, leaves, 0, (int)leaves.size(), layout); },
         [&] {
-            layout->nodes.reserve(leaves.size()); // a node at least per inner binary node
+            layout->nodes.reserve(leaves.size()); // at most a node per inner binary node
             Collapse(&b, {0, 0}, layout);
         });
 }
