@@ -204,9 +204,8 @@ static RT_INLINE void BestSplit(const Bins *bins, int axis, real nodeArea, Split
     const Bounds *box = bins->box[axis];
     const int *count = bins->count[axis];
     int full[kBins], m = 0;
-    for (int k = 0; k < kBins; k++)
-        if (count[k] > 0)
-            full[m++] = k;
+    for (int k = 0; k < kBins; k++) // (without a branch: which bins are full is a coin toss)
+        full[m] = k, m += count[k] > 0;
     if (m < 2)
         return;
     real rightCost[kBins]; // area times blocks
