@@ -77,8 +77,9 @@ static RT_INLINE void GrowItem(Bounds *b, const BuildItem *item) {
     Load(&lo, item->lo), Load(&hi, item->hi);
     GrowBy(b, &lo, &hi);
 }
-// The centre as a vector, its fourth lane 0. (That lane would be the index's bits: a subnormal
-// number, which costs a processor some hundred cycles an operation.)
+// The centre as a vector, its fourth lane 0. (That lane would be the index's bits, a subnormal
+// number, which a processor may take a hundred cycles to compute with: it doubled the binning's
+// time on the machine rt was measured on.)
 static RT_INLINE void LoadCentre(const BuildItem *item, Quad4 *c) {
     typedef decltype(*c < *c) Mask4;
     Mask4 keep = {-1, -1, -1, 0};

@@ -84,7 +84,8 @@ struct Builder {
 
 // A subtree of at least this many triangles is left to any thread (a new task) rather than
 // built at once by the thread that splits it off: large enough that a task costs little
-// beside its work, small enough that the two threads finish about together.
+// beside its work, small enough that the two threads finish about together. (1024 and 8192
+// build the 82k- and 1M-triangle meshes of make_mesh as fast, within the noise.)
 const int kTaskMin = 2048;
 
 static int AddTask(Builder *b, const Task *task) {
