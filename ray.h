@@ -732,6 +732,49 @@ bool HitCommittedTriangles(const Scene *scene, int skip, const Ray *ray, const R
 // True if this processor runs the kernel's AVX2 copy (CommitScene sets SceneLayout::wide).
 bool KernelCanBeWide();
 
+// ---- build.cpp: where the BVH build splits a node (for CommitScene) -------------------------
+
+// A box as the build keeps it: lo and hi of x, y, z, each read as a vector of four numbers whose
+// fourth is not used; aligned, so that no vector straddles two cache lines.
+struct alignas(4 * sizeof(real)) Bounds {
+    real lo[4], hi[4];
+};
+
+// What the build knows of a node's triangles: the union of their boxes, and the box of their
+// centres (where they are binned).
+struct NodeBounds {
+    Bounds box, centres;
+};
+
+// A triangle as the build sees it: its box (TriangleBox), the box's centre, and its place in the
+// scene. Each of lo, hi and centre is read as a vector of four, the fourth being the next number
+// in the item, which is not used: so an item is 80 bytes (40 in float), moved the sooner as the
+// build reorders them.
+struct BuildItem {
+    real lo[3], hi[3];
+    real centre[3];
+    int index; // in scene->triangles
+    int zero;  // (so that the centre's vector reads no unset bytes)
+};
+
+// How many blocks hold this many triangles.
+inline int Blocks(int triangles) { return (triangles + kLanes - 1) / kLanes; }
+
+// The items of triangles[first, last), and their bounds. `wide`: with AVX2 (KernelCanBeWide);
+// the answers are the same bits either way, here and in SplitNode.
+void MakeBuildItems(const Triangle *triangles, int first, int last, bool wide, BuildItem *items,
+                    NodeBounds *bounds);
+
+// Where to split the node of items[begin, end), whose bounds are `node`: by the surface area
+// heuristic, or at the median where `heuristic` is false or the centres do not spread. Reorders
+// the items so that the first side's come first, and returns where the second's begin, with the
+// bounds of both sides; -1 where a leaf costs less (and the items are left as they were).
+int SplitNode(BuildItem *items, int begin, int end, const NodeBounds *node, bool heuristic,
+              bool wide, NodeBounds side[2]);
+
+// The Box of bounds, as TriangleBox makes one, and half its surface area.
+void BoundsBox(const Bounds *bounds, Box *box, real *halfArea);
+
 // ---- shade.cpp: lighting and the ray chain ---------------------------------------------------
 
 // Decides which effects a render of this scene with these settings can need (see Effects).
