@@ -292,7 +292,7 @@ struct Pending {
     real near;
 };
 
-// Deepest tree the walk can follow: commit.cpp's median splits past depth 48 halve the
+// Deepest tree the walk can follow: build.cpp's median splits past depth 48 (kMaxSahDepth) halve the
 // triangles, so even 2^31 of them stay well inside. Each node visited leaves at most three
 // more children waiting (its nearest is visited next).
 const int kMaxDepth = 128;
