@@ -25,7 +25,7 @@ const size_t kBvhMinTriangles = 32;
 
 // Below this depth the surface area heuristic splits; deeper (a heuristic that keeps splitting
 // one triangle off a long list) the median does, which halves each time: the traversal stack
-// (kernel.cpp, kMaxDepth) then holds a tree of any size rt can read.
+// (kernel_walk.h, kMaxDepth) then holds a tree of any size rt can read.
 const int kMaxSahDepth = 48;
 
 // One block: the triangles at places index[0..n) lane by lane; empty lanes repeat lane 0's
