@@ -18,7 +18,8 @@ static std::string Number(real v) {
     if (std::isinf(v))
         v = std::copysign(std::numeric_limits<real>::max(), v);
     char text[32];
-    for (int digits = 1; digits <= 17; digits++) {
+    int digits = 1;
+    for (; digits <= 17; digits++) {
         snprintf(text, sizeof text, "%.*g", digits, (double)v);
 #ifdef RT_FLOAT
         if (strtof(text, nullptr) == v)
@@ -27,6 +28,14 @@ static std::string Number(real v) {
 #endif
             break;
     }
+    // %g writes 20 as `2e+01` when one digit is enough. A whole number below 1e15 (float: 1e7)
+    // is written out instead (`20`, `1000`): every whole number below 2^53 is a double (below
+    // 2^24 a float), so a number whose shortest digits make such a whole number is exactly it,
+    // and %.0f writes those same digits.
+    const int kWholeDigits = sizeof(real) == sizeof(double) ? 15 : 7;
+    int exponent = (int)std::floor(std::log10(std::fabs((double)v)));
+    if (v != 0 && digits <= exponent + 1 && exponent < kWholeDigits)
+        snprintf(text, sizeof text, "%.0f", (double)v);
     return text;
 }
 
@@ -34,19 +43,44 @@ static std::string Triple(vec3 v) {
     return "[" + Number(v.x) + "," + Number(v.y) + "," + Number(v.z) + "]";
 }
 
-// A JSON string; bytes that are not printable ASCII are escaped, so the output is always valid.
+// How many bytes of s, from `at`, make one well-formed UTF-8 character other than ASCII (RFC
+// 3629: no overlong forms, no surrogates, nothing past U+10FFFF); 0 if they do not.
+static size_t Utf8Length(const std::string &s, size_t at) {
+    unsigned char c = (unsigned char)s[at];
+    size_t length = c >= 0xf0 ? 4 : c >= 0xe0 ? 3 : 2;
+    if (c < 0xc2 || c > 0xf4 || at + length > s.size())
+        return 0;
+    unsigned char next = (unsigned char)s[at + 1]; // the second byte's range depends on the first
+    unsigned char low = c == 0xe0 ? 0xa0 : c == 0xf0 ? 0x90 : 0x80;
+    unsigned char high = c == 0xed ? 0x9f : c == 0xf4 ? 0x8f : 0xbf;
+    if (next < low || next > high)
+        return 0;
+    for (size_t k = 2; k < length; k++)
+        if (((unsigned char)s[at + k] & 0xc0) != 0x80)
+            return 0;
+    return length;
+}
+
+// A JSON string (RFC 8259): quotes, backslashes and control characters escaped, well-formed
+// UTF-8 (a material named `é`) passed through as it is, and any other byte, which no UTF-8
+// reader could decode, written as U+FFFD, the replacement character: the output is always valid.
 static std::string Quoted(const std::string &s) {
     std::string out = "\"";
-    for (unsigned char c : s) {
+    for (size_t i = 0; i < s.size(); i++) {
+        unsigned char c = (unsigned char)s[i];
+        size_t length = c >= 0x80 ? Utf8Length(s, i) : 1;
         if (c == '"' || c == '\\') {
             out += '\\';
             out += (char)c;
-        } else if (c < 32 || c > 126) {
+        } else if (c < 32 || c == 127) {
             char escape[8];
             snprintf(escape, sizeof escape, "\\u%04x", c);
             out += escape;
+        } else if (length == 0) {
+            out += "\\ufffd";
         } else {
-            out += (char)c;
+            out += s.substr(i, length);
+            i += length - 1;
         }
     }
     return out + "\"";
