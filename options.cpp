@@ -192,9 +192,13 @@ static bool ParseOption(const std::string &a, char **v, Options *opt, std::strin
     for (const ChoiceOption &c : kChoices)
         if (a == c.name)
             return ParseChoice(a, v[0], c.words, &(opt->*c.field), error);
-    if (a == "-o")
+    if (a == "-o") {
         opt->output = v[0];
-    else if (a == "--size")
+        if (opt->output.empty()) { // (an empty output is how "no -o" is kept)
+            *error = "-o needs a file name, .png or .ppm";
+            return false;
+        }
+    } else if (a == "--size")
         return ParseSize(v[0], opt, error);
     else if (a == "--spp")
         return ParseInt(v[0], 1, 65536, "--spp", &opt->spp, error);
@@ -255,6 +259,9 @@ static bool CheckUnused(const Options *opt, const std::string &seen, std::string
          {"--size", "--spp", "--aa", "--threads", "--depth", "--view", "--stats", "--seed",
           "--scatter", "--lights", "--roulette"}},
         {opt->pixel, "--pixel", {"--spp", "--aa", "--threads", "--stats"}},
+        {opt->view, // one ray through each pixel's centre, on one thread
+         "--view",
+         {"--spp", "--aa", "--threads", "--seed", "--scatter", "--lights", "--roulette"}},
         {opt->compare,
          "--compare",
          {"--size", "--spp", "--aa", "--threads", "--depth", "--methods", "--sphere", "--triangle",
@@ -336,6 +343,12 @@ bool ParseOptions(int argc, char **argv, Options *opt, std::string *error) {
         if (!ParseOption(a, argv + k + 1, opt, error))
             return false;
         k += values;
+    }
+    if (sceneGiven && opt->compare) {
+        *error = "a scene ('" + opt->scene +
+                 "') changes nothing with --compare, which reads two "
+                 "images";
+        return false;
     }
     return CheckCombinations(opt, seen, error);
 }

@@ -992,7 +992,8 @@ bool FindView(const std::string &name, ViewKind *view);
 const char *ViewName(ViewKind view);
 
 // Renders a debug view of the primary hits instead of the lit image.
-void RenderView(const Scene *scene, const RenderSettings *settings, ViewKind view, Image *image);
+void RenderView(const Scene *scene, const RenderSettings *settings, ViewKind view, Image *image,
+                RayStats *stats);
 
 // ---- scene_default.cpp, scene_test.cpp: the built-in scenes ----------------------------------
 

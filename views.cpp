@@ -47,47 +47,55 @@ static color ShapeColor(const RayHit *hit) {
 // Whether a light lights the point (1), is blocked by a shape (0), or is behind the surface (-1),
 // by the shading's own shadow test.
 static int LightState(const Scene *scene, const RenderSettings *settings, const RayHit *hit,
-                      const Light *light) {
+                      const Light *light, RayStats *stats) {
     if (!(Dot(hit->normal, light->position - hit->point) > 0))
         return -1;
     Ray shadow;
     RayStart start;
-    bool blocked = ShadowRay(hit, light->position, &settings->methods, &shadow, &start) &&
-                   AnyHitFrom(scene, settings->methods, &shadow, &start, 1);
-    return blocked ? 0 : 1;
+    if (!ShadowRay(hit, light->position, &settings->methods, &shadow, &start))
+        return 1; // the light is at the point itself: nothing between them
+    stats->shadow++;
+    return AnyHitFrom(scene, settings->methods, &shadow, &start, 1) ? 0 : 1;
 }
 
 // One light: white if it lights the point, red if a shape blocks it, dark grey if the surface
 // faces away from it. Several: each of the first three lights in its own channel (red, green,
 // blue), full where it lights the point, 0.45 where a shape blocks it, none where the surface
 // faces away, so every combination has its own colour (a fourth light on is not shown).
-static color ShadowMask(const Scene *scene, const RenderSettings *settings, const RayHit *hit) {
+static color ShadowMask(const Scene *scene, const RenderSettings *settings, const RayHit *hit,
+                        RayStats *stats) {
     if (scene->lights.size() == 1) {
-        int state = LightState(scene, settings, hit, &scene->lights[0]);
+        int state = LightState(scene, settings, hit, &scene->lights[0], stats);
         return state > 0 ? color{1, 1, 1} : state == 0 ? color{1, 0, 0} : color{0.25, 0.25, 0.25};
     }
     real channel[3] = {0, 0, 0};
     for (size_t k = 0; k < 3 && k < scene->lights.size(); k++) {
-        int state = LightState(scene, settings, hit, &scene->lights[k]);
+        int state = LightState(scene, settings, hit, &scene->lights[k], stats);
         channel[k] = state > 0 ? 1 : state == 0 ? real(0.45) : 0;
     }
     return {channel[0], channel[1], channel[2]};
 }
 
-// The raw value of one pixel; depth and cost are scaled to the image's range afterwards.
+// Every ray counted in *s.
+static uint64_t RaysCast(const RayStats *s) {
+    return s->primary + s->shadow + s->reflection + s->refraction + s->diffuse;
+}
+
+// The raw value of one pixel; depth and cost are scaled to the image's range afterwards. The
+// rays it casts are counted in *stats.
 static color ViewValue(const Scene *scene, const RenderSettings *settings, ViewKind view, int i,
-                       int j, real *scalar) {
+                       int j, real *scalar, RayStats *stats) {
     Ray ray;
     GetCameraRay(&settings->camera, settings->width, settings->height, SamplePosition(i, j, 0, 1),
                  &ray);
     if (view == VIEW_COST) {
-        RayStats stats = {};
-        TraceLog log = {stats, nullptr, -1, 0};
+        TraceLog log = {*stats, nullptr, -1, 0}; // counting on from the pixels before
         TraceRay(scene, settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
-        *scalar = real(log.stats.primary + log.stats.shadow + log.stats.reflection +
-                       log.stats.refraction);
+        *scalar = real(RaysCast(&log.stats) - RaysCast(stats));
+        *stats = log.stats;
         return {0, 0, 0};
     }
+    stats->primary++;
     RayHit hit;
     *scalar = -1; // no hit
     if (!FindNearestHit(scene, settings->methods, &ray, 0, kInfinity, &hit))
@@ -98,18 +106,19 @@ static color ViewValue(const Scene *scene, const RenderSettings *settings, ViewK
     if (view == VIEW_ID)
         return ShapeColor(&hit);
     if (view == VIEW_SHADOW)
-        return ShadowMask(scene, settings, &hit);
+        return ShadowMask(scene, settings, &hit, stats);
     return {0, 0, 0};
 }
 
-void RenderView(const Scene *scene, const RenderSettings *settings, ViewKind view, Image *image) {
+void RenderView(const Scene *scene, const RenderSettings *settings, ViewKind view, Image *image,
+                RayStats *stats) {
     int w = settings->width, h = settings->height;
     std::vector<color> colors((size_t)w * h);
     std::vector<real> scalars((size_t)w * h);
     for (int j = 0; j < h; j++)
         for (int i = 0; i < w; i++)
             colors[(size_t)j * w + i] =
-                ViewValue(scene, settings, view, i, j, &scalars[(size_t)j * w + i]);
+                ViewValue(scene, settings, view, i, j, &scalars[(size_t)j * w + i], stats);
 
     // Depth: nearest hit white, farthest dark grey, misses black. Cost: a heat scale from 0 rays
     // to the most any pixel cost.

@@ -54,6 +54,33 @@ static void TestProbeRays() {
                "probe with |d| = 1000: t = 0.014");
     Ray up = {{0, 0, 0}, {0, 1, 0}};
     CHECK(ProbeRayJson(&scene, &settings, &up) == "{\"hit\":false}", "probe upward: no hit");
+
+    // Whole numbers are written out: d = (0.1, 0.1, -1) meets the back wall z = -20 at t = 20,
+    // the point (2, 2, -20); %g alone would write `2e+01`
+    Ray wall = {{0, 0, 0}, {real(0.1), real(0.1), -1}};
+    j = ProbeRayJson(&scene, &settings, &wall);
+    CHECK(j.find("\"t\":20,\"point\":[2,2,-20]") != std::string::npos,
+          "probe at the back wall: t = 20, point (2, 2, -20), written out: " + j);
+}
+
+// Material names are JSON strings: UTF-8 passes through, a byte no UTF-8 reader could decode
+// becomes U+FFFD, a quote is escaped.
+static void TestProbeNames() {
+    Scene scene;
+    BuildDefaultScene(&scene);
+    RenderSettings settings = TestSettings(&scene);
+    const char *names[][2] = {{"\xc3\xa9", "\"\xc3\xa9\""},                   // é, two bytes
+                              {"\xe2\x82\xac", "\"\xe2\x82\xac\""},           // €, three bytes
+                              {"a\xff\"", "\"a\\ufffd\\\"\""},                // not UTF-8; a quote
+                              {"\xc3", "\"\\ufffd\""},                        // cut short
+                              {"\xed\xa0\x80", "\"\\ufffd\\ufffd\\ufffd\""}}; // a surrogate
+    Ray ahead = {{0, 0, 0}, {0, 0, -1}};
+    for (auto &name : names) {
+        scene.materials[scene.spheres[0].material].name = name[0];
+        std::string j = ProbeRayJson(&scene, &settings, &ahead);
+        CHECK(j.find(std::string("\"material\":") + name[1] + "}") != std::string::npos,
+              std::string("probe names the material as the JSON string ") + name[1] + ": " + j);
+    }
 }
 
 struct ProbeLineCase {
@@ -125,13 +152,19 @@ static void TestViews() {
           "views are found by their exact names");
 
     // Normal view: the back wall's normal (0, 0, 1) is drawn (0.5, 0.5, 1) -> (128, 128, 255)
-    RenderView(&scene, &settings, VIEW_NORMAL, &image);
+    RayStats stats = {};
+    RenderView(&scene, &settings, VIEW_NORMAL, &image, &stats);
+    CHECK(stats.primary == 512 * 512 && stats.shadow == 0 && stats.reflection == 0,
+          "normal view: one primary ray a pixel, counted, and nothing else");
     CHECK(pixel(256, 100, 0) == 128 && pixel(256, 100, 1) == 128 && pixel(256, 100, 2) == 255,
           "normal view: the back wall is (128, 128, 255)");
     CHECK(pixel(256, 500, 0) == 0 && pixel(256, 500, 2) == 0, "normal view: a miss is black");
 
     // Shadow view: (110, 330) is blocked (red), (256, 330) is lit (white)
-    RenderView(&scene, &settings, VIEW_SHADOW, &image);
+    stats = {};
+    RenderView(&scene, &settings, VIEW_SHADOW, &image, &stats);
+    CHECK(stats.primary == 512 * 512 && stats.shadow > 0 && stats.shadow < stats.primary,
+          "shadow view: a primary ray a pixel, a shadow ray for each hit facing the light");
     CHECK(pixel(110, 330, 0) == 255 && pixel(110, 330, 1) == 0, "shadow view: blocked is red");
     CHECK(pixel(256, 330, 0) == 255 && pixel(256, 330, 1) == 255 && pixel(256, 330, 2) == 255,
           "shadow view: lit is white");
@@ -142,7 +175,7 @@ static void TestViews() {
     Scene two = scene;
     two.lights.push_back({{-30, 5, -15}, {1, 1, 1}});
     RenderSettings twoSettings = TestSettings(&two);
-    RenderView(&two, &twoSettings, VIEW_SHADOW, &image);
+    RenderView(&two, &twoSettings, VIEW_SHADOW, &image, &stats);
     CHECK(pixel(110, 330, 0) == 115 && pixel(110, 330, 1) == 255 && pixel(110, 330, 2) == 0,
           "shadow view, two lights: blocked from the first (red 0.45), lit by the second (green)");
     CHECK(pixel(256, 330, 0) == 255 && pixel(256, 330, 1) == 115 && pixel(256, 330, 2) == 0,
@@ -150,20 +183,28 @@ static void TestViews() {
           "big sphere: another colour");
 
     // Depth view: the floor's front edge (nearest) is brighter than the back wall
-    RenderView(&scene, &settings, VIEW_DEPTH, &image);
+    RenderView(&scene, &settings, VIEW_DEPTH, &image, &stats);
     CHECK(pixel(256, 350, 0) > pixel(256, 100, 0) && pixel(256, 100, 0) > 0,
           "depth view: the near floor is brighter than the far wall");
 
     // Object id: the two floor triangles and the spheres get different colours
-    RenderView(&scene, &settings, VIEW_ID, &image);
+    RenderView(&scene, &settings, VIEW_ID, &image, &stats);
     CHECK(memcmp(&image.pixels[(330 * 512 + 110) * 3], &image.pixels[(100 * 512 + 256) * 3], 3) !=
               0,
           "id view: the floor and the back wall differ");
 
     // Cost: a lit floor pixel costs 2 rays (primary, shadow), the mirror reflecting the lit
     // floor 3 (primary, reflection, shadow), so it is drawn hotter
-    RenderView(&scene, &settings, VIEW_COST, &image);
+    stats = {};
+    RenderView(&scene, &settings, VIEW_COST, &image, &stats);
     CHECK(pixel(300, 300, 1) > pixel(256, 330, 1), "cost view: a reflected pixel costs more");
+    // and its rays are the render's own: the same counts as the lit image at one sample a pixel
+    Image lit;
+    RayStats rendered = {};
+    Render(&scene, &settings, &lit, &rendered);
+    CHECK(stats.primary == rendered.primary && stats.shadow == rendered.shadow &&
+              stats.reflection == rendered.reflection && stats.refraction == rendered.refraction,
+          "cost view: it counts the rays the lit image casts, kind by kind");
 }
 
 static void TestCompare() {
@@ -186,6 +227,7 @@ static void TestCompare() {
 
 void TestProbes() {
     TestProbeRays();
+    TestProbeNames();
     TestProbeLines();
     TestPixelTrees();
     TestViews();
