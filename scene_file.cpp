@@ -145,11 +145,22 @@ static bool ReadTriangle(const Statement *st, Scene *scene, std::string *error) 
     t.a = {v[0], v[1], v[2]};
     t.b = {v[3], v[4], v[5]};
     t.c = {v[6], v[7], v[8]};
-    vec3 n = Cross(t.b - t.a, t.c - t.a);
-    if (n.x == 0 && n.y == 0 && n.z == 0)
+    // The intersection's own judgement (SetUpTriangle, at any scale: corners of 1e-200 have an
+    // area there, though their plain cross product underflows to 0)
+    TriangleSetUp setUp;
+    SetUpTriangle(&t, &setUp);
+    double span = 0; // its largest edge component, in double as SetUpTriangle works
+    for (vec3 corner : {t.b, t.c})
+        for (double e :
+             {(double)corner.x - t.a.x, (double)corner.y - t.a.y, (double)corner.z - t.a.z})
+            span = std::max(span, std::fabs(e));
+    if (!setUp.hasArea)
         scene->warnings.push_back(std::string(st->file) + ":" + std::to_string(st->line) +
-                                  ": warning: this triangle has no area (its corners are on one "
-                                  "line), so no ray ever hits it");
+                                  (std::isfinite(span)
+                                       ? ": warning: this triangle has no area (its corners are "
+                                         "on one line), so no ray ever hits it"
+                                       : ": warning: this triangle's edges are beyond the range "
+                                         "of numbers, so no ray ever hits it"));
     scene->triangles.push_back(t);
     return true;
 }

@@ -123,6 +123,23 @@ static void TestSceneVariations() {
               warned.triangles.size() == 2,
           "a triangle without area and properties the floor shading does not use: warnings "
           "with their lines, and the scene read as written");
+    // Area is judged at any scale, as the intersection judges it: corners of 1e-200 (float:
+    // 1e-30), whose plain cross product underflows to 0, have an area; in double, edges of 2e308
+    // do not
+    const char *e = sizeof(real) == sizeof(double) ? "e-200" : "e-30";
+    std::string corners = std::string("-1") + e + " -1" + e + " -5" + e + " 1" + e + " -1" + e +
+                          " -5" + e + " 0 1" + e + " -5" + e;
+    Scene tiny;
+    CHECK(ParseSceneText("material m\ntriangle " + corners + " m\n", "t.scene", &tiny, &error) &&
+              tiny.warnings.empty(),
+          "a triangle 1" + std::string(e) + " across: no warning (rays do hit it)");
+    if (sizeof(real) == sizeof(double))
+        CHECK(ParseSceneText("material m\ntriangle -1e308 0 0 1e308 0 0 0 1e308 0 m\n", "t.scene",
+                             &tiny, &error) &&
+                  tiny.warnings.size() == 1 &&
+                  tiny.warnings[0].find("t.scene:2: warning: this triangle's edges are beyond") ==
+                      0,
+              "a triangle whose edges overflow: warned of, as such");
     CHECK(
         ParseSceneText("shading phong\nmaterial m specular 0.5 10\n", "w.scene", &warned, &error) &&
             warned.warnings.empty(),
