@@ -171,24 +171,57 @@ static int Probe(const Options *opt, const Scene *scene, const RenderSettings *s
 }
 
 // The render settings the scene and the options choose.
-// A screen camera's edges fix its shape, so --size must keep it, or the pixels would not be
+// A screen camera's edges fix its shape, so the image must keep it, or the pixels would not be
 // square and spheres would come out as eggs: W : H must be |h| : |v| to within 1 part in 256
 // (less than a pixel's width across 256 pixels). A perspective or lookat camera adapts its
 // screen to the image instead.
-static bool ScreenKeepsSquarePixels(const Options *opt, const Scene *scene, std::string *error) {
-    if (!opt->width || scene->camera.kind != CAMERA_SCREEN)
+static bool SquarePixels(double W, double H, double h, double v) {
+    return std::fabs(W * v - H * h) <= (W * v + H * h) / 512;
+}
+
+// A size that keeps the screen's pixels square: `width` wide, or, when no whole height fits that
+// width (a 3 x 1 screen 100 pixels wide would need 33.3), the next width that has one. False when
+// no size within the limit (16384) fits.
+static bool SquareSize(int width, double h, double v, int *W, int *H) {
+    const int kMaxSide = 16384; // as --size and `size` allow
+    for (*W = width; *W <= kMaxSide; ++*W) {
+        *H = (int)std::lround(*W * v / h);
+        if (*H >= 1 && *H <= kMaxSide && SquarePixels(*W, *H, h, v))
+            return true;
+    }
+    return false;
+}
+
+// --size refused, or the scene's own size warned of, when the pixels of a screen camera would
+// not be square; the message names a size that fits.
+static bool ScreenKeepsSquarePixels(const Options *opt, const Scene *scene, std::string *error,
+                                    std::string *warning) {
+    if (scene->camera.kind != CAMERA_SCREEN)
         return true;
     double h = SafeLength(scene->camera.horizontal), v = SafeLength(scene->camera.vertical);
-    double W = opt->width, H = opt->height ? opt->height : opt->width;
-    if (std::fabs(W * v - H * h) <= (W * v + H * h) / 512)
+    int width = opt->width ? opt->width : scene->width;
+    int height = opt->width ? (opt->height ? opt->height : opt->width) : scene->height;
+    if (SquarePixels(width, height, h, v))
         return true;
-    char text[200];
-    snprintf(text, sizeof text,
-             "--size %gx%g: the scene's screen camera is %g x %g, so its pixels would not be "
-             "square; give --size %gx%.0f",
-             W, H, h, v, W, std::round(W * v / h));
-    *error = text;
-    return false;
+    int W, H;
+    char fits[64] = "no size up to 16384 x 16384 keeps them square";
+    if (SquareSize(width, h, v, &W, &H))
+        snprintf(fits, sizeof fits,
+                 opt->width ? "--size %dx%d keeps them square" : "`size %d %d` keeps them square",
+                 W, H);
+    char text[300];
+    if (opt->width)
+        snprintf(text, sizeof text,
+                 "--size %dx%d: the scene's screen camera is %g x %g, so its pixels would not be "
+                 "square; %s",
+                 width, height, h, v, fits);
+    else
+        snprintf(text, sizeof text,
+                 "warning: the scene's screen camera is %g x %g and its image %d x %d, so its "
+                 "pixels are not square; %s",
+                 h, v, width, height, fits);
+    (opt->width ? *error : *warning) = text;
+    return !opt->width;
 }
 
 static RenderSettings ChosenSettings(const Options *opt, const Scene *scene) {
@@ -200,6 +233,8 @@ static RenderSettings ChosenSettings(const Options *opt, const Scene *scene) {
     settings.depth = opt->depth ? opt->depth : scene->depth;
     unsigned hardware = std::thread::hardware_concurrency();
     settings.threads = opt->threads ? opt->threads : (hardware ? (int)hardware : 1);
+    if (opt->view)
+        settings.threads = 1; // (RenderView draws on one thread)
     settings.methods = ChosenMethods(opt);
     settings.path = {(ScatterMethod)opt->scatter, (LightMethod)opt->lights, opt->roulette == 1,
                      opt->seed};
@@ -242,7 +277,7 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
     RayStats stats = {};
     auto renderStart = std::chrono::steady_clock::now();
     if (opt->view)
-        RenderView(scene, settings, opt->viewKind, &image);
+        RenderView(scene, settings, opt->viewKind, &image, &stats);
     else
         Render(scene, settings, &image, &stats);
     double renderSeconds = SecondsSince(renderStart);
@@ -281,10 +316,13 @@ static int Run(int argc, char **argv) {
     }
     for (const std::string &warning : scene.warnings)
         fprintf(stderr, "ray: %s\n", warning.c_str());
-    if (!ScreenKeepsSquarePixels(&opt, &scene, &error)) {
+    std::string warning;
+    if (!ScreenKeepsSquarePixels(&opt, &scene, &error, &warning)) {
         fprintf(stderr, "ray: %s\n", error.c_str());
         return 2;
     }
+    if (!warning.empty())
+        fprintf(stderr, "ray: %s\n", warning.c_str());
     RenderSettings settings = ChosenSettings(&opt, &scene);
     // The scene's commit: only the robust triangle test has a fast layout (the handouts' methods
     // are the plain loop, as written)

@@ -124,6 +124,10 @@ static void TestSpecialOutputs(const std::string &dir) {
           "an output name of 254 characters is written (" + err + ")");
     CHECK(RunRay(dir, "my.scene -o x.jpg", &err) == 2 && RunRay(dir, "my.scene -o x", &err) == 2,
           "an output named neither .png nor .ppm: exit 2");
+    CHECK(RunRay(dir, "my.scene -o ''", &err) == 2 &&
+              err.find("-o needs a file name") != std::string::npos &&
+              RunRay(dir, "--compare plain.png plain.png -o ''", &err) == 2,
+          "an empty output name, for a render or a comparison: exit 2, not the default name");
     CHECK(RunRay(dir, "my.scene -o x.ppm", &err) == 0 &&
               ReadFile(dir + "/x.ppm").compare(0, 13, "P6\n16 16\n255\n") == 0 &&
               ReadFile(dir + "/x.ppm").size() == 13 + 16 * 16 * 3,

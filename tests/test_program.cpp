@@ -123,9 +123,12 @@ static void TestBadInput(const std::string &dir) {
     }
     std::string err;
     // Options that would change nothing in the mode chosen are errors
-    const char *unused[][2] = {{"--ray 0 0 0 0 0 -1 --spp 4", "--spp changes nothing with --ray"},
-                               {"--pixel 1 1 --aa jitter", "--aa changes nothing with --pixel"},
-                               {"--compare a.png b.png --size 10", "--size changes nothing"}};
+    const char *unused[][2] = {
+        {"--ray 0 0 0 0 0 -1 --spp 4", "--spp changes nothing with --ray"},
+        {"--pixel 1 1 --aa jitter", "--aa changes nothing with --pixel"},
+        {"--compare a.png b.png --size 10", "--size changes nothing"},
+        {"--view cost --spp 4", "--spp changes nothing with --view"},
+        {"--compare a.png b.png my.scene", "changes nothing with --compare"}};
     for (auto &u : unused)
         CHECK(RunRay(dir, u[0], &err) == 2 && err.find(u[1]) != std::string::npos,
               std::string("`ray ") + u[0] + "`: exit 2, \"" + u[1] + "\"");
@@ -134,10 +137,25 @@ static void TestBadInput(const std::string &dir) {
     std::string handout2 =
         std::string(getcwd(cwd, sizeof cwd) ? cwd : ".") + "/scenes/handout2.scene";
     CHECK(RunRay(dir, handout2 + " --size 300x300 -o sq.png", &err) == 2 &&
-              err.find("give --size 300x225") != std::string::npos,
+              err.find("--size 300x225 keeps them square") != std::string::npos,
           "a 4 x 3 screen camera at --size 300x300: refused, with the size that keeps it");
     CHECK(RunRay(dir, handout2 + " --size 80x60 -o ok.png", &err) == 0,
           "and at --size 80x60, its own shape, rendered");
+    // A 3 x 1 screen 100 pixels wide would need 33.3 rows: the size named is one that fits
+    std::ofstream(dir + "/wide.scene")
+        << "camera screen 0 0 0 -1.5 -0.5 -1 3 0 0 0 1 0\nsize 102 34\n";
+    CHECK(RunRay(dir, "wide.scene --size 100x33 -o w.png", &err) == 2 &&
+              err.find("--size 102x34 keeps them square") != std::string::npos &&
+              RunRay(dir, "wide.scene --size 102x34 -o w.png", &err) == 0,
+          "a 3 x 1 screen at --size 100x33: refused, and the size it names, 102x34, rendered");
+    // The scene's own size is the scene's to choose: rendered, with a warning
+    std::ofstream(dir + "/stretched.scene")
+        << "camera screen 0 0 0 -2 -1.5 -1 4 0 0 0 3 0\nsize 512 512\n";
+    CHECK(RunRay(dir, "stretched.scene -o s.png", &err) == 0 &&
+              err.find("warning: the scene's screen camera is 4 x 3 and its image 512 x 512") !=
+                  std::string::npos &&
+              err.find("`size 512 384` keeps them square") != std::string::npos,
+          "a 4 x 3 screen camera at the default 512 x 512: rendered, with a warning naming a size");
     CHECK(RunRay(dir, "--spp 0 -o fresh.png", &err) == 2 && !FileExists(dir + "/fresh.png"),
           "a failed run creates no output file");
     CHECK(RunRay(dir, "--help", &err) == 0 &&
