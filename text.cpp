@@ -104,6 +104,15 @@ bool ParseReal(const std::string &token, real *value, std::string *error) {
         *error = "number out of range: " + Shown(token);
         return false;
     }
+    // A number too small to be anything but 0 (1e-400; in float 1e-50) is refused as a number
+    // too large is: read as 0, a radius of 1e-50 would be refused as "not > 0", and a direction
+    // as "zero", for a number that is neither. (A nonzero digit before the exponent: not 0.)
+    size_t exponent = token.find_first_of("eE");
+    bool nonzero = token.substr(0, exponent).find_first_of("123456789") != std::string::npos;
+    if ((real)v == 0 && nonzero) {
+        *error = "number out of range (too small, it would be 0): " + Shown(token);
+        return false;
+    }
     *value = (real)v;
     return true;
 }

@@ -27,6 +27,8 @@ static const BadScene kBadScenes[] = {
     {"ambient 0x10", 1, "not a decimal number"},
     {"ambient 0.5x", 1, "not a decimal number"},
     {"ambient 1e999", 1, "out of range"},
+    {"ambient 1e-999", 1, "too small, it would be 0"}, // (0e-999 and 0.000 are 0, as written)
+    {"material m\nsphere 0 0 -5 1e-400 m", 2, "too small, it would be 0): '1e-400'"},
     {"ambient 1.5", 1, "[0, 1]"},
     {"ambient 0.1\nambient 0.2", 2, "second 'ambient'"},
     {"size 1 1\n# fine\nsize 2 2", 3, "second 'size'"},
@@ -130,6 +132,10 @@ static void TestSceneVariations() {
     std::string corners = std::string("-1") + e + " -1" + e + " -5" + e + " 1" + e + " -1" + e +
                           " -5" + e + " 0 1" + e + " -5" + e;
     Scene tiny;
+    CHECK(ParseSceneText("ambient 0e-999\nbackground 0.000 -0.0e-400 0\n", "z.scene", &tiny,
+                         &error) &&
+              tiny.ambient == 0,
+          "zeros written with an exponent are 0, not numbers too small (" + error + ")");
     CHECK(ParseSceneText("material m\ntriangle " + corners + " m\n", "t.scene", &tiny, &error) &&
               tiny.warnings.empty(),
           "a triangle 1" + std::string(e) + " across: no warning (rays do hit it)");
