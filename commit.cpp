@@ -98,8 +98,7 @@ static int AddTask(Builder *b, const Task *task) {
 }
 
 // The binary subtree over items[begin, end), depth-first into `part`: a node, its first child
-// right after it, then its second (or a task for it). A leaf's items are sorted by place: its
-// triangles keep their order in the scene. Returns the node's place.
+// right after it, then its second (or a task for it). Returns the node's place.
 static int BuildNode(Builder *b, std::vector<BinaryNode> *part, int begin, int end,
                      const NodeBounds *bounds, int depth) {
     int place = (int)part->size();
@@ -111,8 +110,6 @@ static int BuildNode(Builder *b, std::vector<BinaryNode> *part, int begin, int e
                      ? -1
                      : SplitNode(b->items, begin, end, bounds, depth < kMaxSahDepth, b->wide, side);
     if (middle < 0) {
-        std::sort(b->items + begin, b->items + end,
-                  [](const BuildItem &x, const BuildItem &y) { return x.index < y.index; });
         node.count = end - begin;
     } else {
         // A large second child is a task made before the first child is built: another thread
@@ -227,18 +224,20 @@ static int Collapse(Builder *b, NodeRef top, SceneLayout *layout) {
     return place;
 }
 
-// The blocks of the leaves, each at its number.
+// The blocks of the leaves, each at its number. A leaf's triangles keep their order in the
+// scene: its items' places are sorted first (ints, not the items).
 static void FillLeaves(Builder *b, const std::vector<Triangle> &triangles,
                        const std::vector<NodeRef> &leaves, SceneLayout *layout) {
-    int index[kLanes];
+    std::vector<int> index;
     for (NodeRef r : leaves) {
         const BinaryNode *leaf = At(b, r);
-        for (int i = 0; i < leaf->count; i += kLanes) {
-            int lanes = std::min(kLanes, leaf->count - i);
-            for (int lane = 0; lane < lanes; lane++)
-                index[lane] = b->items[leaf->first + i + lane].index;
-            FillBlock(triangles, index, lanes, &layout->blocks[leaf->block + i / kLanes]);
-        }
+        index.resize(leaf->count);
+        for (int i = 0; i < leaf->count; i++)
+            index[i] = b->items[leaf->first + i].index;
+        std::sort(index.begin(), index.end());
+        for (int i = 0; i < leaf->count; i += kLanes)
+            FillBlock(triangles, &index[i], std::min(kLanes, leaf->count - i),
+                      &layout->blocks[leaf->block + i / kLanes]);
     }
 }
 
@@ -246,11 +245,15 @@ static void FillLeaves(Builder *b, const std::vector<Triangle> &triangles,
 // a build of this size a millisecond or two.
 const int kThreadMin = 4096;
 
-// The set-ups (plane.cpp) of triangles [first, last), in scene order.
-static void SetUpRange(const std::vector<Triangle> &triangles, size_t first, size_t last,
-                       SceneLayout *layout) {
-    for (size_t i = first; i < last; i++)
-        SetUpTriangle(&triangles[i], &layout->setUps[i]);
+// The set-ups (plane.cpp) of the triangles, in scene order, each made where it is kept: the
+// vector is reserved and appended to, not resized (which would write every byte twice).
+static void SetUpAll(const std::vector<Triangle> &triangles, SceneLayout *layout) {
+    layout->setUps.reserve(triangles.size());
+    for (const Triangle &t : triangles) {
+        TriangleSetUp setUp;
+        SetUpTriangle(&t, &setUp);
+        layout->setUps.push_back(setUp);
+    }
 }
 
 // The second thread runs its share of a step here (a named function, so that a profile can
@@ -290,8 +293,7 @@ static void BuildTree(const std::vector<Triangle> &triangles, SceneLayout *layou
             BuildTasks(&b);
         },
         [&] {
-            layout->setUps.resize(n);
-            SetUpRange(triangles, 0, n, layout);
+            SetUpAll(triangles, layout);
             // (the trees of make_mesh's meshes need 3 to 5 per cent more blocks than Blocks(n))
             layout->blocks.resize(Blocks(n) + Blocks(n) / 16);
             BuildTasks(&b);
@@ -320,8 +322,7 @@ void CommitScene(Scene *scene, LayoutChoice choice) {
         for (int i = 0; i < n; i++)
             index[i] = i;
         AppendBlocks(triangles, index.data(), n, &layout);
-        layout.setUps.resize(n);
-        SetUpRange(triangles, 0, n, &layout);
+        SetUpAll(triangles, &layout);
     }
     layout.triangleCount = triangles.size();
     layout.committed = true;
