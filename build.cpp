@@ -26,6 +26,7 @@ const int kMaxLeafBlocks = 4;
 // are passed by pointer, as in kernel.cpp: a 32-byte vector is passed differently with AVX.
 typedef real Quad4 __attribute__((vector_size(4 * sizeof(real))));
 typedef int Int4 __attribute__((vector_size(16)));
+typedef unsigned UInt4 __attribute__((vector_size(16)));
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #define RT_AVX2 __attribute__((target("avx2")))
@@ -93,41 +94,70 @@ static RT_INLINE void GrowCentre(Bounds *b, const BuildItem *item) {
 }
 
 // The bins of a node's centroids on all three axes, filled in one pass (Wald 2007): per
-// bin, how many and the union of their boxes. An axis whose centroids do not spread has scale 0.
+// bin, how many and the union of their boxes (together, so that one offset finds both). An axis
+// whose centroids do not spread has scale 0.
+struct Bin {
+    Bounds box;
+    int count;
+};
 struct Bins {
-    Bounds box[3][kBins];
-    int count[3][kBins];
+    Bin bin[3][kBins];
     real lo[4], scale[4]; // per axis (the fourth is 0)
 };
 
-// The items' boxes added to the bins of their centroids, the three bins found at once.
+// The items' boxes added to the bins of their centroids, the three bins found at once. The bin
+// is the whole part of f = (c - lo) scale, at most the last: f's conversion, read as unsigned,
+// and the least of it and the last (a NaN or an f beyond the ints converts to 2^31, which gives
+// the last, as f's own least with the last would; f is never below 0). Each axis's bin is then
+// found as the byte offset of its place in the bins of all three axes (axis times kBins on).
 static RT_INLINE void AddItem(const BuildItem *item, const Quad4 *lo, const Quad4 *scale,
                               Bins *bins) {
-    Quad4 itemLo, itemHi, centre, last; // (read once: the bins' stores could alias them)
+    Quad4 itemLo, itemHi, centre; // (read once: the bins' stores could alias them)
     Load(&itemLo, item->lo), Load(&itemHi, item->hi), LoadCentre(item, &centre);
-    Splat(&last, kBins - 1);
-    Quad4 f = (centre - *lo) * *scale;
-    f = f < last ? f : last; // (before the conversion: the same as after; NaN gives last)
-    Int4 k = __builtin_convertvector(f, Int4);
+    UInt4 last = {kBins - 1, kBins - 1, kBins - 1, kBins - 1}, first = {0, kBins, 2 * kBins, 0};
+    UInt4 k = (UInt4) __builtin_convertvector((centre - *lo) * *scale, Int4);
+    UInt4 offset = ((k < last ? k : last) + first) * (unsigned)sizeof(Bin);
+    char *start = (char *)bins->bin;
     for (int axis = 0; axis < 3; axis++) {
-        bins->count[axis][k[axis]]++;
-        GrowBy(&bins->box[axis][k[axis]], &itemLo, &itemHi);
+        Bin *bin = (Bin *)(start + offset[axis]);
+        bin->count++;
+        GrowBy(&bin->box, &itemLo, &itemHi);
     }
 }
 
-static RT_INLINE void FillBins(const BuildItem *items, int n, Bins *bins) {
+static RT_INLINE void ClearBins(Bins *bins) {
     for (int axis = 0; axis < 3; axis++)
         for (int k = 0; k < kBins; k++)
-            bins->box[axis][k] = EmptyBounds(), bins->count[axis][k] = 0;
+            bins->bin[axis][k] = {EmptyBounds(), 0};
+}
+
+// From this many items on, the items alternate between two sets of bins, merged at the end:
+// neighbouring triangles mostly share a bin, and one set makes each item wait for the last
+// one's store to that bin.
+const int kTwoBinsMin = 64;
+
+static RT_INLINE void FillBins(const BuildItem *items, int n, Bins *bins) {
+    ClearBins(bins);
     Quad4 lo, scale;
     Load(&lo, bins->lo), Load(&scale, bins->scale);
-    for (int i = 0; i < n; i++)
+    int i = 0;
+    if (n >= kTwoBinsMin) {
+        Bins other;
+        ClearBins(&other);
+        for (; i + 1 < n; i += 2)
+            AddItem(&items[i], &lo, &scale, bins), AddItem(&items[i + 1], &lo, &scale, &other);
+        for (int axis = 0; axis < 3; axis++)
+            for (int k = 0; k < kBins; k++)
+                Grow(&bins->bin[axis][k].box, &other.bin[axis][k].box),
+                    bins->bin[axis][k].count += other.bin[axis][k].count;
+    }
+    for (; i < n; i++)
         AddItem(&items[i], &lo, &scale, bins);
 }
 
 // A split of a node's items: bins below `bin` of `axis` go left; what it costs.
 struct Split {
-    real cost;
+    real cost, sides; // sides: the sum of the two sides' areas times blocks, cost's numerator
     int axis, bin;
 };
 
@@ -136,30 +166,32 @@ struct Split {
 // side times that side's blocks. Only boundaries right after a full bin are tried: one after an
 // empty bin splits the same way, and the first of those is the one a sweep over all finds.
 static RT_INLINE void BestSplit(const Bins *bins, int axis, real nodeArea, Split *best) {
-    const Bounds *box = bins->box[axis];
-    const int *count = bins->count[axis];
+    const Bin *bin = bins->bin[axis];
     int full[kBins], m = 0;
     for (int k = 0; k < kBins; k++) // (without a branch: which bins are full is a coin toss)
-        full[m] = k, m += count[k] > 0;
+        full[m] = k, m += bin[k].count > 0;
     if (m < 2)
         return;
     real rightCost[kBins]; // area times blocks
-    Bounds right = box[full[m - 1]];
-    int rightCount = count[full[m - 1]];
+    Bounds right = bin[full[m - 1]].box;
+    int rightCount = bin[full[m - 1]].count;
     rightCost[m - 1] = HalfArea(&right) * Blocks(rightCount);
     for (int j = m - 2; j > 0; j--) { // everything in full bins j and above
-        Grow(&right, &box[full[j]]);
-        rightCount += count[full[j]];
+        Grow(&right, &bin[full[j]].box);
+        rightCount += bin[full[j]].count;
         rightCost[j] = HalfArea(&right) * Blocks(rightCount);
     }
-    Bounds left = box[full[0]];
-    int leftCount = count[full[0]];
+    Bounds left = bin[full[0]].box;
+    int leftCount = bin[full[0]].count;
     for (int j = 1; j < m; j++) {
         if (j > 1)
-            Grow(&left, &box[full[j - 1]]), leftCount += count[full[j - 1]];
-        real cost = 1 + (HalfArea(&left) * Blocks(leftCount) + rightCost[j]) / nodeArea;
+            Grow(&left, &bin[full[j - 1]].box), leftCount += bin[full[j - 1]].count;
+        real sides = HalfArea(&left) * Blocks(leftCount) + rightCost[j];
+        if (!(sides < best->sides)) // (rounding is monotonic: then the cost is no less either)
+            continue;
+        real cost = 1 + sides / nodeArea; // (a division only where the cost may fall)
         if (cost < best->cost)
-            *best = {cost, axis, full[j - 1] + 1};
+            *best = {cost, sides, axis, full[j - 1] + 1};
     }
 }
 
@@ -167,8 +199,8 @@ static RT_INLINE void BestSplit(const Bins *bins, int axis, real nodeArea, Split
 static RT_INLINE void SideBoxes(const Bins *bins, const Split *split, NodeBounds side[2]) {
     side[0].box = side[1].box = EmptyBounds();
     for (int k = 0; k < kBins; k++)
-        if (bins->count[split->axis][k] > 0)
-            Grow(&side[k >= split->bin].box, &bins->box[split->axis][k]);
+        if (bins->bin[split->axis][k].count > 0)
+            Grow(&side[k >= split->bin].box, &bins->bin[split->axis][k].box);
 }
 
 // Reorders items[begin, end) so the left ones (by the split) come first, as std::partition
@@ -231,7 +263,7 @@ static RT_INLINE int SplitItems(BuildItem *items, int begin, int end, const Node
                                 bool heuristic, NodeBounds side[2]) {
     int n = end - begin;
     Bins bins;
-    Split best = {kInfinity, 0, 0};
+    Split best = {kInfinity, kInfinity, 0, 0};
     if (heuristic && PlaceBins(node, &bins)) {
         FillBins(items + begin, n, &bins);
         real area = HalfArea(&node->box);
