@@ -94,35 +94,49 @@ static RT_INLINE void GrowCentre(Bounds *b, const BuildItem *item) {
 }
 
 // The bins of a node's centroids on all three axes, filled in one pass (Wald 2007): per
-// bin, how many and the union of their boxes (together, so that one offset finds both). An axis
-// whose centroids do not spread has scale 0.
+// bin, how many and the union of their boxes (together, so that one offset finds both), and
+// per axis a bit for each bin that holds an item. An axis whose centroids do not spread has
+// scale 0.
 struct Bin {
     Bounds box;
     int count;
 };
 struct Bins {
     Bin bin[3][kBins];
+    unsigned full[3];     // bit k: bin k holds an item
     real lo[4], scale[4]; // per axis (the fourth is 0)
 };
+static_assert(kBins <= 32, "a bin's bit in an unsigned");
 
-// The items' boxes added to the bins of their centroids, the three bins found at once. The bin
-// is the whole part of f = (c - lo) scale, at most the last: f's conversion, read as unsigned,
-// and the least of it and the last (a NaN or an f beyond the ints converts to 2^31, which gives
-// the last, as f's own least with the last would; f is never below 0). Each axis's bin is then
-// found as the byte offset of its place in the bins of all three axes (axis times kBins on).
-static RT_INLINE void AddItem(const BuildItem *item, const Quad4 *lo, const Quad4 *scale,
-                              Bins *bins) {
-    Quad4 itemLo, itemHi, centre; // (read once: the bins' stores could alias them)
-    Load(&itemLo, item->lo), Load(&itemHi, item->hi), LoadCentre(item, &centre);
-    UInt4 last = {kBins - 1, kBins - 1, kBins - 1, kBins - 1}, first = {0, kBins, 2 * kBins, 0};
+// An item's bins, the three found at once: the whole part of f = (c - lo) scale, at most the
+// last. That is f's conversion, read as unsigned, and the least of it and the last (a NaN or an
+// f beyond the ints converts to 2^31, which gives the last, as f's own least with the last
+// would; f is never below 0).
+static RT_INLINE UInt4 BinsOf(const BuildItem *item, const Quad4 *lo, const Quad4 *scale) {
+    Quad4 centre;
+    LoadCentre(item, &centre);
+    UInt4 last = {kBins - 1, kBins - 1, kBins - 1, kBins - 1};
     UInt4 k = (UInt4) __builtin_convertvector((centre - *lo) * *scale, Int4);
-    UInt4 offset = ((k < last ? k : last) + first) * (unsigned)sizeof(Bin);
+    return k < last ? k : last;
+}
+
+// The item's box added to its bins (`k`, BinsOf), each found by the byte offset of its place in
+// the bins of all three axes (axis times kBins on).
+static RT_INLINE void AddItemAt(const BuildItem *item, UInt4 k, Bins *bins) {
+    Quad4 itemLo, itemHi; // (read once: the bins' stores could alias them)
+    Load(&itemLo, item->lo), Load(&itemHi, item->hi);
+    UInt4 first = {0, kBins, 2 * kBins, 0};
+    UInt4 offset = (k + first) * (unsigned)sizeof(Bin);
     char *start = (char *)bins->bin;
     for (int axis = 0; axis < 3; axis++) {
         Bin *bin = (Bin *)(start + offset[axis]);
         bin->count++;
         GrowBy(&bin->box, &itemLo, &itemHi);
     }
+}
+static RT_INLINE void AddItem(const BuildItem *item, const Quad4 *lo, const Quad4 *scale,
+                              Bins *bins) {
+    AddItemAt(item, BinsOf(item, lo, scale), bins);
 }
 
 static RT_INLINE void ClearBins(Bins *bins) {
@@ -131,28 +145,44 @@ static RT_INLINE void ClearBins(Bins *bins) {
             bins->bin[axis][k] = {EmptyBounds(), 0};
 }
 
-// From this many items on, the items alternate between two sets of bins, merged at the end:
-// neighbouring triangles mostly share a bin, and one set makes each item wait for the last
-// one's store to that bin.
-const int kTwoBinsMin = 64;
+// Every bin cleared, the items added, then each axis's full bins noted.
+static RT_INLINE void FillAllBins(const BuildItem *items, int n, const Quad4 *lo,
+                                  const Quad4 *scale, Bins *bins) {
+    ClearBins(bins);
+    for (int i = 0; i < n; i++)
+        AddItem(&items[i], lo, scale, bins);
+    for (int axis = 0; axis < 3; axis++) {
+        bins->full[axis] = 0;
+        for (int k = 0; k < kBins; k++)
+            bins->full[axis] |= (unsigned)(bins->bin[axis][k].count > 0) << k;
+    }
+}
+
+// Below this many items a node's bins are found first, and only the full ones cleared: 48
+// bins cleared and scanned cost about what 32 items' bits do.
+const int kFewItems = 32;
+
+static RT_INLINE void FillFewBins(const BuildItem *items, int n, const Quad4 *lo,
+                                  const Quad4 *scale, Bins *bins) {
+    UInt4 k[kFewItems], full = {0, 0, 0, 0}, one = {1, 1, 1, 1};
+    for (int i = 0; i < n; i++)
+        k[i] = BinsOf(&items[i], lo, scale), full |= one << k[i];
+    for (int axis = 0; axis < 3; axis++) {
+        bins->full[axis] = full[axis];
+        for (unsigned bits = full[axis]; bits != 0; bits &= bits - 1)
+            bins->bin[axis][__builtin_ctz(bits)] = {EmptyBounds(), 0};
+    }
+    for (int i = 0; i < n; i++)
+        AddItemAt(&items[i], k[i], bins);
+}
 
 static RT_INLINE void FillBins(const BuildItem *items, int n, Bins *bins) {
-    ClearBins(bins);
     Quad4 lo, scale;
     Load(&lo, bins->lo), Load(&scale, bins->scale);
-    int i = 0;
-    if (n >= kTwoBinsMin) {
-        Bins other;
-        ClearBins(&other);
-        for (; i + 1 < n; i += 2)
-            AddItem(&items[i], &lo, &scale, bins), AddItem(&items[i + 1], &lo, &scale, &other);
-        for (int axis = 0; axis < 3; axis++)
-            for (int k = 0; k < kBins; k++)
-                Grow(&bins->bin[axis][k].box, &other.bin[axis][k].box),
-                    bins->bin[axis][k].count += other.bin[axis][k].count;
-    }
-    for (; i < n; i++)
-        AddItem(&items[i], &lo, &scale, bins);
+    if (n < kFewItems)
+        FillFewBins(items, n, &lo, &scale, bins);
+    else
+        FillAllBins(items, n, &lo, &scale, bins);
 }
 
 // A split of a node's items: bins below `bin` of `axis` go left; what it costs.
@@ -168,8 +198,8 @@ struct Split {
 static RT_INLINE void BestSplit(const Bins *bins, int axis, real nodeArea, Split *best) {
     const Bin *bin = bins->bin[axis];
     int full[kBins], m = 0;
-    for (int k = 0; k < kBins; k++) // (without a branch: which bins are full is a coin toss)
-        full[m] = k, m += bin[k].count > 0;
+    for (unsigned bits = bins->full[axis]; bits != 0; bits &= bits - 1)
+        full[m++] = __builtin_ctz(bits);
     if (m < 2)
         return;
     real rightCost[kBins]; // area times blocks
@@ -198,9 +228,10 @@ static RT_INLINE void BestSplit(const Bins *bins, int axis, real nodeArea, Split
 // The boxes of the two sides of a split: the unions of their bins.
 static RT_INLINE void SideBoxes(const Bins *bins, const Split *split, NodeBounds side[2]) {
     side[0].box = side[1].box = EmptyBounds();
-    for (int k = 0; k < kBins; k++)
-        if (bins->bin[split->axis][k].count > 0)
-            Grow(&side[k >= split->bin].box, &bins->bin[split->axis][k].box);
+    for (unsigned bits = bins->full[split->axis]; bits != 0; bits &= bits - 1) {
+        int k = __builtin_ctz(bits);
+        Grow(&side[k >= split->bin].box, &bins->bin[split->axis][k].box);
+    }
 }
 
 // Reorders items[begin, end) so the left ones (by the split) come first, as std::partition
@@ -321,9 +352,11 @@ static RT_INLINE void MakeItems(const Triangle *triangles, int first, int last, 
         Quad4 centre = lo * half + hi * half, finite = (a - a) + (b - b) + (c - c);
         if (!(finite[0] == 0 && finite[1] == 0 && finite[2] == 0 && finite[3] == 0))
             lo = -infinity, hi = infinity, Splat(&centre, 0);
-        // (each vector's fourth lane lands on the next field, which the next store writes)
+        // (each vector's fourth lane lands on the next field, which the next store writes; the
+        // centre's on the index and the padding after it, all 0 until the index is written)
+        centre[3] = 0;
         Store(items[i].lo, &lo), Store(items[i].hi, &hi), Store(items[i].centre, &centre);
-        items[i].index = i, items[i].zero = 0;
+        items[i].index = i;
         GrowBy(&bounds->box, &lo, &hi), GrowPoint(&bounds->centres, &centre);
     }
 }
