@@ -16,6 +16,7 @@
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <thread>
 
 // Below this many triangles the blocks are one list: a ray then tests them all, which is
@@ -224,21 +225,41 @@ static int Collapse(Builder *b, NodeRef top, SceneLayout *layout) {
     return place;
 }
 
-// The blocks of the leaves, each at its number. A leaf's triangles keep their order in the
-// scene: its items' places are sorted first (ints, not the items).
+// The blocks of the leaves, each at its number, into `blocks`. A leaf's triangles keep their
+// order in the scene: its items' places are sorted first (ints, not the items). The leaves are
+// taken last first, so the blocks may lie over the items (ItemsInBlocks): a leaf's blocks start
+// no lower than its items do (a block is as large as kLanes items, and a leaf's first block is
+// at least its first item over kLanes), so they overwrite only its own items, read already,
+// and those of the leaves after it.
 static void FillLeaves(Builder *b, const std::vector<Triangle> &triangles,
-                       const std::vector<NodeRef> &leaves, SceneLayout *layout) {
+                       const std::vector<NodeRef> &leaves, TriangleBlock *blocks) {
+    static_assert(sizeof(TriangleBlock) >= kLanes * sizeof(BuildItem), "items under blocks");
     std::vector<int> index;
-    for (NodeRef r : leaves) {
-        const BinaryNode *leaf = At(b, r);
+    for (size_t l = leaves.size(); l-- > 0;) {
+        const BinaryNode *leaf = At(b, leaves[l]);
         index.resize(leaf->count);
         for (int i = 0; i < leaf->count; i++)
             index[i] = b->items[leaf->first + i].index;
         std::sort(index.begin(), index.end());
-        for (int i = 0; i < leaf->count; i += kLanes)
-            FillBlock(triangles, &index[i], std::min(kLanes, leaf->count - i),
-                      &layout->blocks[leaf->block + i / kLanes]);
+        for (int i = 0; i < leaf->count; i += kLanes) {
+            TriangleBlock *block = new (&blocks[leaf->block + i / kLanes]) TriangleBlock;
+            FillBlock(triangles, &index[i], std::min(kLanes, leaf->count - i), block);
+        }
     }
+}
+
+// The items, made in the memory of the blocks, which are written only once the items are no
+// longer needed: new memory costs most where it is first written (a page fault each 4 KB), and
+// this way the same pages serve both. The blocks are as many as the tree will likely need
+// (make_mesh's meshes need 3 to 5 per cent more than Blocks(n)), and enough to hold the items.
+static BuildItem *ItemsInBlocks(int n, SceneLayout *layout) {
+    size_t items =
+        ((size_t)n * sizeof(BuildItem) + sizeof(TriangleBlock) - 1) / sizeof(TriangleBlock);
+    layout->blocks.resize(std::max(items, (size_t)(Blocks(n) + Blocks(n) / 16)));
+    BuildItem *first = reinterpret_cast<BuildItem *>(layout->blocks.data());
+    for (int i = 0; i < n; i++)
+        new (&first[i]) BuildItem;
+    return first;
 }
 
 // Below this many triangles the build runs on one thread: a thread takes some 50 us to start,
@@ -277,37 +298,42 @@ static void BuildTree(const std::vector<Triangle> &triangles, SceneLayout *layou
     int n = (int)triangles.size();
     bool threads = n >= kThreadMin && std::thread::hardware_concurrency() > 1;
     bool wide = KernelCanBeWide();
-    std::unique_ptr<BuildItem[]> items(new BuildItem[n]);
     Task root = {0, n, 0, {}};
     Builder b;
-    b.items = items.get(), b.wide = wide, b.next = 0;
+    b.items = nullptr, b.wide = wide, b.next = 0;
     b.unfinished = 1; // the items, until the root's task is made
-    // New memory costs most where it is first written (a page fault each 4 KB): one thread
-    // writes the set-ups and the blocks while the other starts the tree
+    // One thread makes the items (in the blocks' memory) and starts the tree while the other
+    // writes the set-ups
     RunBoth(
         threads,
         [&] {
-            MakeBuildItems(triangles.data(), 0, n, wide, items.get(), &root.bounds);
+            b.items = ItemsInBlocks(n, layout);
+            MakeBuildItems(triangles.data(), 0, n, wide, b.items, &root.bounds);
             AddTask(&b, &root);
             FinishTask(&b);
             BuildTasks(&b);
         },
         [&] {
             SetUpAll(triangles, layout);
-            // (the trees of make_mesh's meshes need 3 to 5 per cent more blocks than Blocks(n))
-            layout->blocks.resize(Blocks(n) + Blocks(n) / 16);
             BuildTasks(&b);
         });
     std::vector<NodeRef> leaves;
     int blocks = 0;
     NumberLeaves(&b, {0, 0}, &blocks, &leaves);
-    layout->blocks.resize(blocks);
+    // (a tree with more blocks than were made writes them to new memory, and the items stay)
+    std::vector<TriangleBlock> more(blocks > (int)layout->blocks.size() ? blocks : 0);
     RunBoth(
-        threads, [&] { FillLeaves(&b, triangles, leaves, layout); },
+        threads,
+        [&] {
+            FillLeaves(&b, triangles, leaves, more.empty() ? layout->blocks.data() : more.data());
+        },
         [&] {
             layout->nodes.reserve(leaves.size()); // at most a node per inner binary node
             Collapse(&b, {0, 0}, layout);
         });
+    if (!more.empty())
+        layout->blocks.swap(more);
+    layout->blocks.resize(blocks);
 }
 
 void CommitScene(Scene *scene, LayoutChoice choice) {
