@@ -12,6 +12,7 @@
 #include "ray.h"
 
 #include <algorithm>
+#include <atomic>
 #include <condition_variable>
 #include <deque>
 #include <memory>
@@ -74,7 +75,8 @@ struct Task {
 // which part, and in whatever order.
 struct Builder {
     BuildItem *items;
-    bool wide; // binning with AVX2 (KernelCanBeWide)
+    int *order; // a leaf's triangles' places, sorted, where its items are (FillLeaves reads them)
+    bool wide;  // binning with AVX2 (KernelCanBeWide)
     std::mutex lock;
     std::condition_variable wake;
     std::vector<Task> tasks;                   // by id, in the order they were made
@@ -112,6 +114,10 @@ static int BuildNode(Builder *b, std::vector<BinaryNode> *part, int begin, int e
                      : SplitNode(b->items, begin, end, bounds, depth < kMaxSahDepth, b->wide, side);
     if (middle < 0) {
         node.count = end - begin;
+        for (int i = begin; i < end; i++)
+            b->order[i] = b->items[i].index;
+        std::sort(b->order + begin,
+                  b->order + end); // (its triangles keep their order in the scene)
     } else {
         // A large second child is a task made before the first child is built: another thread
         // can take it meanwhile
@@ -225,33 +231,25 @@ static int Collapse(Builder *b, NodeRef top, SceneLayout *layout) {
     return place;
 }
 
-// The blocks of the leaves, each at its number, into `blocks`. A leaf's triangles keep their
-// order in the scene: its items' places are sorted first (ints, not the items). The leaves are
-// taken last first, so the blocks may lie over the items (ItemsInBlocks): a leaf's blocks start
-// no lower than its items do (a block is as large as kLanes items, and a leaf's first block is
-// at least its first item over kLanes), so they overwrite only its own items, read already,
-// and those of the leaves after it.
+// The blocks of leaves[first, last), each at its number, into `blocks`. (They may lie over the
+// items, ItemsInBlocks: once the tree is built, only the leaves' orders are read.)
 static void FillLeaves(Builder *b, const std::vector<Triangle> &triangles,
-                       const std::vector<NodeRef> &leaves, TriangleBlock *blocks) {
-    static_assert(sizeof(TriangleBlock) >= kLanes * sizeof(BuildItem), "items under blocks");
-    std::vector<int> index;
-    for (size_t l = leaves.size(); l-- > 0;) {
+                       const std::vector<NodeRef> &leaves, size_t first, size_t last,
+                       TriangleBlock *blocks) {
+    for (size_t l = first; l < last; l++) {
         const BinaryNode *leaf = At(b, leaves[l]);
-        index.resize(leaf->count);
-        for (int i = 0; i < leaf->count; i++)
-            index[i] = b->items[leaf->first + i].index;
-        std::sort(index.begin(), index.end());
         for (int i = 0; i < leaf->count; i += kLanes) {
             TriangleBlock *block = new (&blocks[leaf->block + i / kLanes]) TriangleBlock;
-            FillBlock(triangles, &index[i], std::min(kLanes, leaf->count - i), block);
+            FillBlock(triangles, b->order + leaf->first + i, std::min(kLanes, leaf->count - i),
+                      block);
         }
     }
 }
 
-// The items, made in the memory of the blocks, which are written only once the items are no
-// longer needed: new memory costs most where it is first written (a page fault each 4 KB), and
-// this way the same pages serve both. The blocks are as many as the tree will likely need
-// (make_mesh's meshes need 3 to 5 per cent more than Blocks(n)), and enough to hold the items.
+// The items, made in the memory of the blocks, which are written only once the tree is built:
+// new memory costs most where it is first written (a page fault each 4 KB), and this way the
+// same pages serve both. The blocks are as many as the tree will likely need (make_mesh's
+// meshes need 3 to 5 per cent more than Blocks(n)), and enough to hold the items.
 static BuildItem *ItemsInBlocks(int n, SceneLayout *layout) {
     size_t items =
         ((size_t)n * sizeof(BuildItem) + sizeof(TriangleBlock) - 1) / sizeof(TriangleBlock);
@@ -261,6 +259,10 @@ static BuildItem *ItemsInBlocks(int n, SceneLayout *layout) {
         new (&first[i]) BuildItem;
     return first;
 }
+
+// The leaves a thread fills at a time: some 50 us of work, so that the two threads finish
+// within about that of each other, and a shared counter is touched once in a few hundred leaves.
+const size_t kLeafShare = 256;
 
 // Below this many triangles the build runs on one thread: a thread takes some 50 us to start,
 // a build of this size a millisecond or two.
@@ -299,8 +301,9 @@ static void BuildTree(const std::vector<Triangle> &triangles, SceneLayout *layou
     bool threads = n >= kThreadMin && std::thread::hardware_concurrency() > 1;
     bool wide = KernelCanBeWide();
     Task root = {0, n, 0, {}};
+    std::unique_ptr<int[]> order(new int[n]);
     Builder b;
-    b.items = nullptr, b.wide = wide, b.next = 0;
+    b.items = nullptr, b.order = order.get(), b.wide = wide, b.next = 0;
     b.unfinished = 1; // the items, until the root's task is made
     // One thread makes the items (in the blocks' memory) and starts the tree while the other
     // writes the set-ups
@@ -320,20 +323,19 @@ static void BuildTree(const std::vector<Triangle> &triangles, SceneLayout *layou
     std::vector<NodeRef> leaves;
     int blocks = 0;
     NumberLeaves(&b, {0, 0}, &blocks, &leaves);
-    // (a tree with more blocks than were made writes them to new memory, and the items stay)
-    std::vector<TriangleBlock> more(blocks > (int)layout->blocks.size() ? blocks : 0);
-    RunBoth(
-        threads,
-        [&] {
-            FillLeaves(&b, triangles, leaves, more.empty() ? layout->blocks.data() : more.data());
-        },
-        [&] {
-            layout->nodes.reserve(leaves.size()); // at most a node per inner binary node
-            Collapse(&b, {0, 0}, layout);
-        });
-    if (!more.empty())
-        layout->blocks.swap(more);
-    layout->blocks.resize(blocks);
+    layout->blocks.resize(blocks); // (the items are no longer needed)
+    // Both threads fill the blocks, a share of leaves at a time, once one has collapsed the tree
+    std::atomic<size_t> next(0);
+    auto fill = [&] {
+        for (size_t first; (first = next.fetch_add(kLeafShare)) < leaves.size();)
+            FillLeaves(&b, triangles, leaves, first, std::min(first + kLeafShare, leaves.size()),
+                       layout->blocks.data());
+    };
+    RunBoth(threads, fill, [&] {
+        layout->nodes.reserve(leaves.size()); // at most a node per inner binary node
+        Collapse(&b, {0, 0}, layout);
+        fill();
+    });
 }
 
 void CommitScene(Scene *scene, LayoutChoice choice) {
