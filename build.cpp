@@ -63,11 +63,16 @@ static RT_INLINE void GrowPoint(Bounds *b, const Quad4 *point) { GrowBy(b, point
 // ratio of their areas (for rays in all directions; the heuristic's premise). A box that holds a
 // non-finite triangle has infinite area: a side that is infinite makes a product infinite, or
 // 0 * infinity, NaN, and either way the answer is kInfinity.
-static RT_INLINE real HalfArea(const Bounds *b) {
+// (RawHalfArea leaves the NaN: where a cost only competes, BestSplit, a NaN loses as the
+// infinity would.)
+static RT_INLINE real RawHalfArea(const Bounds *b) {
     Quad4 lo, hi;
     Load(&lo, b->lo), Load(&hi, b->hi);
     Quad4 d = hi - lo;
-    real area = d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+    return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+}
+static RT_INLINE real HalfArea(const Bounds *b) {
+    real area = RawHalfArea(b);
     return area == area ? area : kInfinity;
 }
 
@@ -205,18 +210,18 @@ static RT_INLINE void BestSplit(const Bins *bins, int axis, real nodeArea, Split
     real rightCost[kBins]; // area times blocks
     Bounds right = bin[full[m - 1]].box;
     int rightCount = bin[full[m - 1]].count;
-    rightCost[m - 1] = HalfArea(&right) * Blocks(rightCount);
+    rightCost[m - 1] = RawHalfArea(&right) * Blocks(rightCount);
     for (int j = m - 2; j > 0; j--) { // everything in full bins j and above
         Grow(&right, &bin[full[j]].box);
         rightCount += bin[full[j]].count;
-        rightCost[j] = HalfArea(&right) * Blocks(rightCount);
+        rightCost[j] = RawHalfArea(&right) * Blocks(rightCount);
     }
     Bounds left = bin[full[0]].box;
     int leftCount = bin[full[0]].count;
     for (int j = 1; j < m; j++) {
         if (j > 1)
             Grow(&left, &bin[full[j - 1]].box), leftCount += bin[full[j - 1]].count;
-        real sides = HalfArea(&left) * Blocks(leftCount) + rightCost[j];
+        real sides = RawHalfArea(&left) * Blocks(leftCount) + rightCost[j];
         if (!(sides < best->sides)) // (rounding is monotonic: then the cost is no less either)
             continue;
         real cost = 1 + sides / nodeArea; // (a division only where the cost may fall)

@@ -758,8 +758,9 @@ struct BuildItem {
     int index; // in scene->triangles
 };
 
-// How many blocks hold this many triangles.
-inline int Blocks(int triangles) { return (triangles + kLanes - 1) / kLanes; }
+// How many blocks hold this many triangles (a count, never negative: so a shift, not a signed
+// division).
+inline int Blocks(int triangles) { return (int)(((unsigned)triangles + kLanes - 1) / kLanes); }
 
 // The items of triangles[first, last), and their bounds. `wide`: with AVX2 (KernelCanBeWide);
 // the answers are the same bits either way, here and in SplitNode.
