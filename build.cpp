@@ -163,9 +163,10 @@ static RT_INLINE void FillAllBins(const BuildItem *items, int n, const Quad4 *lo
     }
 }
 
-// Below this many items a node's bins are found first, and only the full ones cleared: 48
-// bins cleared and scanned cost about what 32 items' bits do.
-const int kFewItems = 32;
+// Below this many items a node's bins are found first, and only the full ones cleared: the
+// build of make_mesh's 82k-triangle sphere takes 155.9 million instructions with 16, 156.7 with
+// 32, 157.5 with 64, 158.2 with every node clearing all 48 bins.
+const int kFewItems = 16;
 
 static RT_INLINE void FillFewBins(const BuildItem *items, int n, const Quad4 *lo,
                                   const Quad4 *scale, Bins *bins) {
