@@ -12,10 +12,12 @@
 #include "ray.h"
 
 #include <algorithm>
+#include <atomic>
 #include <condition_variable>
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <thread>
 
 // Below this many triangles the blocks are one list: a ray then tests them all, which is
@@ -73,7 +75,8 @@ struct Task {
 // which part, and in whatever order.
 struct Builder {
     BuildItem *items;
-    bool wide; // binning with AVX2 (KernelCanBeWide)
+    int *order; // a leaf's triangles' places, sorted, where its items are (FillLeaves reads them)
+    bool wide;  // binning with AVX2 (KernelCanBeWide)
     std::mutex lock;
     std::condition_variable wake;
     std::vector<Task> tasks;                   // by id, in the order they were made
@@ -98,8 +101,7 @@ static int AddTask(Builder *b, const Task *task) {
 }
 
 // The binary subtree over items[begin, end), depth-first into `part`: a node, its first child
-// right after it, then its second (or a task for it). A leaf's items are sorted by place: its
-// triangles keep their order in the scene. Returns the node's place.
+// right after it, then its second (or a task for it). Returns the node's place.
 static int BuildNode(Builder *b, std::vector<BinaryNode> *part, int begin, int end,
                      const NodeBounds *bounds, int depth) {
     int place = (int)part->size();
@@ -111,9 +113,11 @@ static int BuildNode(Builder *b, std::vector<BinaryNode> *part, int begin, int e
                      ? -1
                      : SplitNode(b->items, begin, end, bounds, depth < kMaxSahDepth, b->wide, side);
     if (middle < 0) {
-        std::sort(b->items + begin, b->items + end,
-                  [](const BuildItem &x, const BuildItem &y) { return x.index < y.index; });
         node.count = end - begin;
+        for (int i = begin; i < end; i++)
+            b->order[i] = b->items[i].index;
+        std::sort(b->order + begin,
+                  b->order + end); // (its triangles keep their order in the scene)
     } else {
         // A large second child is a task made before the first child is built: another thread
         // can take it meanwhile
@@ -227,30 +231,53 @@ static int Collapse(Builder *b, NodeRef top, SceneLayout *layout) {
     return place;
 }
 
-// The blocks of the leaves, each at its number.
+// The blocks of leaves[first, last), each at its number, into `blocks`. (They may lie over the
+// items, ItemsInBlocks: once the tree is built, only the leaves' orders are read.)
 static void FillLeaves(Builder *b, const std::vector<Triangle> &triangles,
-                       const std::vector<NodeRef> &leaves, SceneLayout *layout) {
-    int index[kLanes];
-    for (NodeRef r : leaves) {
-        const BinaryNode *leaf = At(b, r);
+                       const std::vector<NodeRef> &leaves, size_t first, size_t last,
+                       TriangleBlock *blocks) {
+    for (size_t l = first; l < last; l++) {
+        const BinaryNode *leaf = At(b, leaves[l]);
         for (int i = 0; i < leaf->count; i += kLanes) {
-            int lanes = std::min(kLanes, leaf->count - i);
-            for (int lane = 0; lane < lanes; lane++)
-                index[lane] = b->items[leaf->first + i + lane].index;
-            FillBlock(triangles, index, lanes, &layout->blocks[leaf->block + i / kLanes]);
+            TriangleBlock *block = new (&blocks[leaf->block + i / kLanes]) TriangleBlock;
+            FillBlock(triangles, b->order + leaf->first + i, std::min(kLanes, leaf->count - i),
+                      block);
         }
     }
 }
+
+// The items, made in the memory of the blocks, which are written only once the tree is built:
+// new memory costs most where it is first written (a page fault each 4 KB), and this way the
+// same pages serve both. The blocks are as many as the tree will likely need (make_mesh's
+// meshes need 3 to 5 per cent more than Blocks(n)), and enough to hold the items.
+static BuildItem *ItemsInBlocks(int n, SceneLayout *layout) {
+    size_t items =
+        ((size_t)n * sizeof(BuildItem) + sizeof(TriangleBlock) - 1) / sizeof(TriangleBlock);
+    layout->blocks.resize(std::max(items, (size_t)(Blocks(n) + Blocks(n) / 16)));
+    BuildItem *first = reinterpret_cast<BuildItem *>(layout->blocks.data());
+    for (int i = 0; i < n; i++)
+        new (&first[i]) BuildItem;
+    return first;
+}
+
+// The leaves a thread fills at a time: about 80 us of work (the 82k-triangle sphere of make_mesh
+// has some 14,000 leaves, filled in about 4.5 ms), so that the two threads finish within about
+// that of each other, and the shared counter is touched once a few hundred leaves.
+const size_t kLeafShare = 256;
 
 // Below this many triangles the build runs on one thread: a thread takes some 50 us to start,
 // a build of this size a millisecond or two.
 const int kThreadMin = 4096;
 
-// The set-ups (plane.cpp) of triangles [first, last), in scene order.
-static void SetUpRange(const std::vector<Triangle> &triangles, size_t first, size_t last,
-                       SceneLayout *layout) {
-    for (size_t i = first; i < last; i++)
-        SetUpTriangle(&triangles[i], &layout->setUps[i]);
+// The set-ups (plane.cpp) of the triangles, in scene order, each made where it is kept: the
+// vector is reserved and appended to, not resized (which would write every byte twice).
+static void SetUpAll(const std::vector<Triangle> &triangles, SceneLayout *layout) {
+    layout->setUps.reserve(triangles.size());
+    for (const Triangle &t : triangles) {
+        TriangleSetUp setUp;
+        SetUpTriangle(&t, &setUp);
+        layout->setUps.push_back(setUp);
+    }
 }
 
 // The second thread runs its share of a step here (a named function, so that a profile can
@@ -274,38 +301,42 @@ static void BuildTree(const std::vector<Triangle> &triangles, SceneLayout *layou
     int n = (int)triangles.size();
     bool threads = n >= kThreadMin && std::thread::hardware_concurrency() > 1;
     bool wide = KernelCanBeWide();
-    std::unique_ptr<BuildItem[]> items(new BuildItem[n]);
     Task root = {0, n, 0, {}};
+    std::unique_ptr<int[]> order(new int[n]);
     Builder b;
-    b.items = items.get(), b.wide = wide, b.next = 0;
+    b.items = nullptr, b.order = order.get(), b.wide = wide, b.next = 0;
     b.unfinished = 1; // the items, until the root's task is made
-    // New memory costs most where it is first written (a page fault each 4 KB): one thread
-    // writes the set-ups and the blocks while the other starts the tree
+    // One thread makes the items (in the blocks' memory) and starts the tree while the other
+    // writes the set-ups
     RunBoth(
         threads,
         [&] {
-            MakeBuildItems(triangles.data(), 0, n, wide, items.get(), &root.bounds);
+            b.items = ItemsInBlocks(n, layout);
+            MakeBuildItems(triangles.data(), 0, n, wide, b.items, &root.bounds);
             AddTask(&b, &root);
             FinishTask(&b);
             BuildTasks(&b);
         },
         [&] {
-            layout->setUps.resize(n);
-            SetUpRange(triangles, 0, n, layout);
-            // (the trees of make_mesh's meshes need 3 to 5 per cent more blocks than Blocks(n))
-            layout->blocks.resize(Blocks(n) + Blocks(n) / 16);
+            SetUpAll(triangles, layout);
             BuildTasks(&b);
         });
     std::vector<NodeRef> leaves;
     int blocks = 0;
     NumberLeaves(&b, {0, 0}, &blocks, &leaves);
-    layout->blocks.resize(blocks);
-    RunBoth(
-        threads, [&] { FillLeaves(&b, triangles, leaves, layout); },
-        [&] {
-            layout->nodes.reserve(leaves.size()); // at most a node per inner binary node
-            Collapse(&b, {0, 0}, layout);
-        });
+    layout->blocks.resize(blocks); // (the items are no longer needed)
+    // Both threads fill the blocks, a share of leaves at a time, once one has collapsed the tree
+    std::atomic<size_t> next(0);
+    auto fill = [&] {
+        for (size_t first; (first = next.fetch_add(kLeafShare)) < leaves.size();)
+            FillLeaves(&b, triangles, leaves, first, std::min(first + kLeafShare, leaves.size()),
+                       layout->blocks.data());
+    };
+    RunBoth(threads, fill, [&] {
+        layout->nodes.reserve(leaves.size()); // at most a node per inner binary node
+        Collapse(&b, {0, 0}, layout);
+        fill();
+    });
 }
 
 void CommitScene(Scene *scene, LayoutChoice choice) {
@@ -320,8 +351,7 @@ void CommitScene(Scene *scene, LayoutChoice choice) {
         for (int i = 0; i < n; i++)
             index[i] = i;
         AppendBlocks(triangles, index.data(), n, &layout);
-        layout.setUps.resize(n);
-        SetUpRange(triangles, 0, n, &layout);
+        SetUpAll(triangles, &layout);
     }
     layout.triangleCount = triangles.size();
     layout.committed = true;

@@ -748,17 +748,19 @@ struct NodeBounds {
 
 // A triangle as the build sees it: its box (TriangleBox), the box's centre, and its place in the
 // scene. Each of lo, hi and centre is read as a vector of four, the fourth being the next number
-// in the item, which is not used: so an item is 80 bytes (40 in float), moved the sooner as the
-// build reorders them.
+// in the item, which is not used (the centre's is the index, and in double the 4 bytes of
+// padding after it, which the centre's store sets to 0): so an item is 80 bytes (40 in float),
+// moved the sooner as the build reorders them, and kLanes of them fit in a block's memory,
+// where they are made (commit.cpp).
 struct BuildItem {
     real lo[3], hi[3];
     real centre[3];
     int index; // in scene->triangles
-    int zero;  // (so that the centre's vector reads no unset bytes)
 };
 
-// How many blocks hold this many triangles.
-inline int Blocks(int triangles) { return (triangles + kLanes - 1) / kLanes; }
+// How many blocks hold this many triangles (a count, never negative: so a shift, not a signed
+// division).
+inline int Blocks(int triangles) { return (int)(((unsigned)triangles + kLanes - 1) / kLanes); }
 
 // The items of triangles[first, last), and their bounds. `wide`: with AVX2 (KernelCanBeWide);
 // the answers are the same bits either way, here and in SplitNode.
