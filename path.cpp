@@ -96,6 +96,16 @@ real EmitterArea(const Scene *scene, const Emitter *e) {
     return real(0.5) * SafeLength(Cross(t->b - t->a, t->c - t->a));
 }
 
+Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index) {
+    Emitter e = {shape, index, 0, {0, 0, 0}};
+    e.area = EmitterArea(scene, &e);
+    if (shape == SHAPE_TRIANGLE) {
+        const Triangle *t = &scene->triangles[index];
+        e.normal = SafeNormalize(Cross(t->b - t->a, t->c - t->a));
+    }
+    return e;
+}
+
 // A point drawn uniformly over the emitter's surface, and the unit normal there. A sphere: the
 // height z uniform in [-1, 1] (Archimedes again). A triangle: barycentric coordinates from the
 // square root of u, which spreads the points evenly (Shirley & Chiu 1997; pbrt-v4 §A.5.4).
@@ -110,7 +120,7 @@ static void SampleEmitter(const Scene *scene, const Emitter *e, real u, real v, 
     const Triangle *t = &scene->triangles[e->index];
     real root = std::sqrt(u), b0 = 1 - root, b1 = v * root;
     *p = b0 * t->a + b1 * t->b + (1 - b0 - b1) * t->c;
-    *n = SafeNormalize(Cross(t->b - t->a, t->c - t->a));
+    *n = e->normal;
 }
 
 // The density, per solid angle at the shaded point, with which next-event estimation picks a
@@ -242,7 +252,7 @@ static real EmissionWeight(const Path *path, const RayHit *hit) {
         return 1;
     if (lights == LIGHTS_NEE)
         return 0;
-    Emitter e = {hit->shape, hit->index, 0};
+    Emitter e = {hit->shape, hit->index, 0, {0, 0, 0}};
     real distance = hit->t * SafeLength(path->ray.dir);
     real cosLight = std::fabs(Dot(hit->normal, path->ray.dir)) / SafeLength(path->ray.dir);
     real pdf = EmitterPdf(path->settings->effects.emitters.size(), EmitterArea(path->scene, &e),
@@ -258,19 +268,23 @@ static real EmissionWeight(const Path *path, const RayHit *hit) {
 // shares themselves drop out of the throughput.
 // At the last vertex a chain allows (`last`), no ray follows: a diffuse surface still adds the
 // light straight from the lights, as the other shadings' shadow rays do at any depth.
+// The unit incoming direction is made only for a mirror or glass: a diffuse bounce, most of
+// them, does not need it.
 static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) {
     const Methods *methods = &path->settings->methods;
-    vec3 d = SafeNormalize(path->ray.dir), n = hit->normal;
+    vec3 n = hit->normal;
     real pick = Random(path, PICK_SURFACE);
     path->scatterPdf = 0;
     path->kind = RAY_REFLECTION;
     if (pick < m->mirror) {
         if (last)
             return false;
-        LeaveSurface(hit, Reflect(d, n), methods, &path->ray, &path->start);
+        LeaveSurface(hit, Reflect(SafeNormalize(path->ray.dir), n), methods, &path->ray,
+                     &path->start);
         return true;
     }
     if (m->ior > 0) {
+        vec3 d = SafeNormalize(path->ray.dir);
         real eta = hit->frontFace ? 1 / m->ior : m->ior, cosI = -Dot(d, n);
         real reflectance = methods->fresnel == FRESNEL_SCHLICK ? SchlickReflectance(cosI, eta)
                                                                : FresnelReflectance(cosI, eta);

@@ -325,7 +325,8 @@ const Methods kHandoutMethods = {SPHERE_TEXTBOOK, TRIANGLE_CRAMER,   SELF_HIT_EP
 struct Emitter {
     ShapeKind shape;
     int index;
-    real area; // EmitterArea, once per render (every light sample divides by it)
+    real area;   // EmitterArea, once per render (every light sample divides by it)
+    vec3 normal; // a triangle's unit normal, once per render (every light sample uses it)
 };
 
 // Which effects a render can need, decided once per render from the scene and the settings
@@ -713,6 +714,9 @@ bool Emits(const Material *m);
 
 // The surface area of an emitting shape.
 real EmitterArea(const Scene *scene, const Emitter *e);
+
+// An emitting shape, with its area and (a triangle) its unit normal.
+Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index);
 
 // ---- commit.cpp and kernel.cpp: the committed scene ------------------------------------------
 
