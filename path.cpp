@@ -149,6 +149,12 @@ struct Path {
     real scatterPdf; // the density the last diffuse bounce drew the ray with; 0: not diffuse
 };
 
+// RecordRay for a path's rays, with no call where no tree is being drawn (every pixel but the
+// one `--pixel` names).
+static int Record(RayKind kind, const Ray *ray, TraceLog *log) {
+    return log->tree ? RecordRay(kind, ray, log) : -1;
+}
+
 static real Random(const Path *path, Decision d) {
     return PathRandom(&path->sample, path->bounce, d);
 }
@@ -176,7 +182,7 @@ static bool EmitterVisible(Path *path, const RayHit *hit, const Emitter *e, vec3
     if (!ShadowRay(hit, p, methods, &shadow, &start))
         return false;
     path->log->stats.shadow++;
-    int node = RecordRay(RAY_SHADOW, &shadow, path->log);
+    int node = Record(RAY_SHADOW, &shadow, path->log);
     RayHit blocker;
     bool found = FindNearestHitFrom(path->scene, *methods, &shadow, &start, kInfinity, &blocker);
     bool visible = found && blocker.shape == e->shape && blocker.index == e->index;
@@ -204,7 +210,7 @@ static color PointLights(Path *path, const RayHit *hit, color rho) {
         RayStart start;
         if (ShadowRay(hit, light.position, &path->settings->methods, &shadow, &start)) {
             path->log->stats.shadow++;
-            int node = RecordRay(RAY_SHADOW, &shadow, path->log);
+            int node = Record(RAY_SHADOW, &shadow, path->log);
             bool blocked = AnyHitFrom(path->scene, path->settings->methods, &shadow, &start, 1);
             if (node >= 0)
                 (*path->log->tree)[node].hit = blocked;
@@ -301,8 +307,13 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     color rho = m->diffuse;
     if (!(MaxComponent(rho) > 0)) // black: it scatters nothing, not even the lights' light
         return false;
-    path->light = path->light +
-                  path->through * (PointLights(path, hit, rho) + Emitters(path, hit, rho, last));
+    // The emitters' shadow ray first, then the point lights' (the order the ray tree has always
+    // shown). Without point lights, PointLights' +0 would add nothing: the sum's sign of zero
+    // may differ, but the light gathered, which starts at +0, never becomes -0 either way
+    color direct = Emitters(path, hit, rho, last);
+    if (!path->scene->lights.empty())
+        direct = PointLights(path, hit, rho) + direct;
+    path->light = path->light + path->through * direct;
     if (last)
         return false;
     ScatterMethod method = path->settings->path.scatter;
@@ -359,7 +370,7 @@ color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *p
     int parent = log->current;
     for (int number = 1; number <= settings->depth; number++, path.bounce++) {
         CountRay(path.kind, &log->stats);
-        int node = RecordRay(path.kind, &path.ray, log);
+        int node = Record(path.kind, &path.ray, log);
         if (node >= 0)
             nodes.push_back({node, path.light, path.through});
         RayHit hit;
