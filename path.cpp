@@ -97,12 +97,15 @@ real EmitterArea(const Scene *scene, const Emitter *e) {
 }
 
 Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index) {
-    Emitter e = {shape, index, 0, {0, 0, 0}};
+    Emitter e = {shape, index, 0, {0, 0, 0}, {0, 0, 0}};
     e.area = EmitterArea(scene, &e);
-    if (shape == SHAPE_TRIANGLE) {
-        const Triangle *t = &scene->triangles[index];
-        e.normal = SafeNormalize(Cross(t->b - t->a, t->c - t->a));
+    if (shape == SHAPE_SPHERE) {
+        e.emit = scene->materials[scene->spheres[index].material].emit;
+        return e;
     }
+    const Triangle *t = &scene->triangles[index];
+    e.normal = SafeNormalize(Cross(t->b - t->a, t->c - t->a));
+    e.emit = scene->materials[t->material].emit;
     return e;
 }
 
@@ -240,13 +243,11 @@ static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
     if (!(cosTheta > 0) || !(cosLight > 0) || !Faces(path->scene, e, hit, p, n) ||
         !EmitterVisible(path, hit, e, p))
         return {0, 0, 0};
-    int material = e->shape == SHAPE_SPHERE ? path->scene->spheres[e->index].material
-                                            : path->scene->triangles[e->index].material;
     real pdf = EmitterPdf(emitters.size(), e->area, dist2, cosLight);
     real weight = path->settings->path.lights == LIGHTS_MIS && !last // (no scattered ray follows
                       ? PowerHeuristic(pdf, ScatterPdf(path->settings->path.scatter, cosTheta))
                       : 1; // the last vertex to share the light with)
-    return (weight * cosTheta / (kPi * pdf)) * (rho * path->scene->materials[material].emit);
+    return (weight * cosTheta / (kPi * pdf)) * (rho * e->emit);
 }
 
 // The share of an emitter's light that a path adds when its ray hits it: all of it after the
@@ -258,12 +259,36 @@ static real EmissionWeight(const Path *path, const RayHit *hit) {
         return 1;
     if (lights == LIGHTS_NEE)
         return 0;
-    Emitter e = {hit->shape, hit->index, 0, {0, 0, 0}};
+    Emitter e = {hit->shape, hit->index, 0, {0, 0, 0}, {0, 0, 0}};
     real distance = hit->t * SafeLength(path->ray.dir);
     real cosLight = std::fabs(Dot(hit->normal, path->ray.dir)) / SafeLength(path->ray.dir);
     real pdf = EmitterPdf(path->settings->effects.emitters.size(), EmitterArea(path->scene, &e),
                           distance * distance, cosLight);
     return PowerHeuristic(path->scatterPdf, pdf);
+}
+
+// A mirror's or glass's next ray, picked by the number `pick` (Bounce); false at the last
+// vertex, where none follows. The unit incoming direction is made only here: a diffuse
+// bounce, most of them, does not need it.
+static bool Specular(Path *path, const RayHit *hit, const Material *m, real pick, bool last) {
+    if (last)
+        return false;
+    const Methods *methods = &path->settings->methods;
+    vec3 d = SafeNormalize(path->ray.dir), n = hit->normal;
+    if (pick < m->mirror) {
+        LeaveSurface(hit, Reflect(d, n), methods, &path->ray, &path->start);
+        return true;
+    }
+    real eta = hit->frontFace ? 1 / m->ior : m->ior, cosI = -Dot(d, n);
+    real reflectance = methods->fresnel == FRESNEL_SCHLICK ? SchlickReflectance(cosI, eta)
+                                                           : FresnelReflectance(cosI, eta);
+    vec3 refracted;
+    bool reflect = (pick - m->mirror) < reflectance * (1 - m->mirror) || // (the same number,
+                   !Refract(d, n, eta, &refracted);                      // past K)
+    if (!reflect)
+        path->kind = RAY_REFRACTION;
+    LeaveSurface(hit, reflect ? Reflect(d, n) : refracted, methods, &path->ray, &path->start);
+    return true;
 }
 
 // The next ray of the path from a hit on material m, and what the bounce does to the
@@ -274,36 +299,12 @@ static real EmissionWeight(const Path *path, const RayHit *hit) {
 // shares themselves drop out of the throughput.
 // At the last vertex a chain allows (`last`), no ray follows: a diffuse surface still adds the
 // light straight from the lights, as the other shadings' shadow rays do at any depth.
-// The unit incoming direction is made only for a mirror or glass: a diffuse bounce, most of
-// them, does not need it.
 static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) {
-    const Methods *methods = &path->settings->methods;
-    vec3 n = hit->normal;
     real pick = Random(path, PICK_SURFACE);
     path->scatterPdf = 0;
     path->kind = RAY_REFLECTION;
-    if (pick < m->mirror) {
-        if (last)
-            return false;
-        LeaveSurface(hit, Reflect(SafeNormalize(path->ray.dir), n), methods, &path->ray,
-                     &path->start);
-        return true;
-    }
-    if (m->ior > 0) {
-        vec3 d = SafeNormalize(path->ray.dir);
-        real eta = hit->frontFace ? 1 / m->ior : m->ior, cosI = -Dot(d, n);
-        real reflectance = methods->fresnel == FRESNEL_SCHLICK ? SchlickReflectance(cosI, eta)
-                                                               : FresnelReflectance(cosI, eta);
-        vec3 refracted;
-        bool reflect = (pick - m->mirror) < reflectance * (1 - m->mirror) || // (the same number,
-                       !Refract(d, n, eta, &refracted);                      // past K)
-        if (last)
-            return false;
-        if (!reflect)
-            path->kind = RAY_REFRACTION;
-        LeaveSurface(hit, reflect ? Reflect(d, n) : refracted, methods, &path->ray, &path->start);
-        return true;
-    }
+    if (pick < m->mirror || m->ior > 0)
+        return Specular(path, hit, m, pick, last);
     color rho = m->diffuse;
     if (!(MaxComponent(rho) > 0)) // black: it scatters nothing, not even the lights' light
         return false;
@@ -317,6 +318,7 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     if (last)
         return false;
     ScatterMethod method = path->settings->path.scatter;
+    vec3 n = hit->normal;
     vec3 dir = ScatterDirection(method, n, Random(path, SCATTER_U), Random(path, SCATTER_V));
     real cosTheta = Dot(dir, n);
     if (!(cosTheta > 0))
@@ -327,7 +329,7 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     path->through = path->through *
                     (method == SCATTER_COSINE ? rho : (cosTheta / (kPi * path->scatterPdf)) * rho);
     path->kind = RAY_DIFFUSE;
-    LeaveSurface(hit, dir, methods, &path->ray, &path->start);
+    LeaveSurface(hit, dir, &path->settings->methods, &path->ray, &path->start);
     return true;
 }
 

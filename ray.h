@@ -327,6 +327,7 @@ struct Emitter {
     int index;
     real area;   // EmitterArea, once per render (every light sample divides by it)
     vec3 normal; // a triangle's unit normal, once per render (every light sample uses it)
+    color emit;  // its material's emitted radiance
 };
 
 // Which effects a render can need, decided once per render from the scene and the settings
@@ -715,7 +716,7 @@ bool Emits(const Material *m);
 // The surface area of an emitting shape.
 real EmitterArea(const Scene *scene, const Emitter *e);
 
-// An emitting shape, with its area and (a triangle) its unit normal.
+// An emitting shape, with its area, (a triangle) its unit normal, and its radiance.
 Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index);
 
 // ---- commit.cpp and kernel.cpp: the committed scene ------------------------------------------
