@@ -150,6 +150,8 @@ struct Path {
     RayStart start; // and what it must not hit (the surface it leaves)
     RayKind kind;
     real scatterPdf; // the density the last diffuse bounce drew the ray with; 0: not diffuse
+    bool departs;    // the rays from this diffuse hit start at `departure` (Depart)
+    vec3 departure;
 };
 
 // RecordRay for a path's rays, with no call where no tree is being drawn (every pixel but the
@@ -160,6 +162,27 @@ static int Record(RayKind kind, const Ray *ray, TraceLog *log) {
 
 static real Random(const Path *path, Decision d) {
     return PathRandom(&path->sample, path->bounce, d);
+}
+
+// Where the rays from a diffuse hit start: the shadow rays and the scattered ray all go to the
+// side its normal faces (each is cast only with cos theta > 0). The self-hit bound moves the
+// hit point off the surface to the side a ray goes to, whatever its direction there
+// (OffsetRayOrigin), so for all of them that is one point, moved once a vertex. Under the other
+// methods LeaveSurface and ShadowRay decide for each ray.
+static void Depart(Path *path, const RayHit *hit) {
+    path->departs = path->settings->methods.selfHit == SELF_HIT_BOUND;
+    if (path->departs)
+        path->departure = OffsetRayOrigin(hit, hit->normal);
+}
+
+// ShadowRay from the hit to `target`, from the departure point when there is one.
+static bool CastShadow(const Path *path, const RayHit *hit, vec3 target, Ray *ray,
+                       RayStart *start) {
+    if (!path->departs)
+        return ShadowRay(hit, target, &path->settings->methods, ray, start);
+    *start = kFromTheEye;
+    *ray = {path->departure, target - path->departure};
+    return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
 }
 
 // Whether point p (unit normal n) of emitter e can face the shaded hit at all: from outside a
@@ -182,7 +205,7 @@ static bool EmitterVisible(Path *path, const RayHit *hit, const Emitter *e, vec3
     const Methods *methods = &path->settings->methods;
     Ray shadow;
     RayStart start;
-    if (!ShadowRay(hit, p, methods, &shadow, &start))
+    if (!CastShadow(path, hit, p, &shadow, &start))
         return false;
     path->log->stats.shadow++;
     int node = Record(RAY_SHADOW, &shadow, path->log);
@@ -211,7 +234,7 @@ static color PointLights(Path *path, const RayHit *hit, color rho) {
             continue;
         Ray shadow;
         RayStart start;
-        if (ShadowRay(hit, light.position, &path->settings->methods, &shadow, &start)) {
+        if (CastShadow(path, hit, light.position, &shadow, &start)) {
             path->log->stats.shadow++;
             int node = Record(RAY_SHADOW, &shadow, path->log);
             bool blocked = AnyHitFrom(path->scene, path->settings->methods, &shadow, &start, 1);
@@ -308,6 +331,7 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     color rho = m->diffuse;
     if (!(MaxComponent(rho) > 0)) // black: it scatters nothing, not even the lights' light
         return false;
+    Depart(path, hit);
     // The emitters' shadow ray first, then the point lights' (the order the ray tree has always
     // shown). Without point lights, PointLights' +0 would add nothing: the sum's sign of zero
     // may differ, but the light gathered, which starts at +0, never becomes -0 either way
@@ -329,7 +353,10 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     path->through = path->through *
                     (method == SCATTER_COSINE ? rho : (cosTheta / (kPi * path->scatterPdf)) * rho);
     path->kind = RAY_DIFFUSE;
-    LeaveSurface(hit, dir, &path->settings->methods, &path->ray, &path->start);
+    if (!path->departs)
+        LeaveSurface(hit, dir, &path->settings->methods, &path->ray, &path->start);
+    else
+        path->ray = {path->departure, dir}, path->start = kFromTheEye;
     return true;
 }
 
@@ -366,8 +393,8 @@ static void FinishTree(const Path *path, const std::vector<PathNode> &nodes) {
 color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, int i,
                 int j, int s, TraceLog *log) {
     PathSample sample = PathKey(settings->path.seed, i, j, s);
-    Path path = {scene,     settings, log,         sample,      0, {0, 0, 0},
-                 {1, 1, 1}, *primary, kFromTheEye, RAY_PRIMARY, 0};
+    Path path = {scene,    settings,    log,         sample, 0,     {0, 0, 0}, {1, 1, 1},
+                 *primary, kFromTheEye, RAY_PRIMARY, 0,      false, {0, 0, 0}};
     std::vector<PathNode> nodes;
     int parent = log->current;
     for (int number = 1; number <= settings->depth; number++, path.bounce++) {
