@@ -85,8 +85,6 @@ static real PowerHeuristic(real a, real b) {
 
 // ---- emitters: the shapes whose material has `emit` (PlanEffects lists them) ---------------
 
-bool Emits(const Material *m) { return m->emit.x > 0 || m->emit.y > 0 || m->emit.z > 0; }
-
 real EmitterArea(const Scene *scene, const Emitter *e) {
     if (e->shape == SHAPE_SPHERE) {
         real r = scene->spheres[e->index].radius;
@@ -94,19 +92,6 @@ real EmitterArea(const Scene *scene, const Emitter *e) {
     }
     const Triangle *t = &scene->triangles[e->index];
     return real(0.5) * SafeLength(Cross(t->b - t->a, t->c - t->a));
-}
-
-Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index) {
-    Emitter e = {shape, index, 0, {0, 0, 0}, {0, 0, 0}};
-    e.area = EmitterArea(scene, &e);
-    if (shape == SHAPE_SPHERE) {
-        e.emit = scene->materials[scene->spheres[index].material].emit;
-        return e;
-    }
-    const Triangle *t = &scene->triangles[index];
-    e.normal = SafeNormalize(Cross(t->b - t->a, t->c - t->a));
-    e.emit = scene->materials[t->material].emit;
-    return e;
 }
 
 // A point drawn uniformly over the emitter's surface, and the unit normal there. A sphere: the
@@ -166,10 +151,9 @@ static real Random(const Path *path, Decision d) {
     return PathRandom(&path->sample, path->bounce, d);
 }
 
-// Where the rays from a diffuse hit start: the shadow rays and the scattered ray all go to the
-// side its normal faces (each is cast only with cos theta > 0). The self-hit bound moves the
-// hit point off the surface to the side a ray goes to, whatever its direction there
-// (OffsetRayOrigin), so for all of them that is one point, moved once a vertex. Under the other
+// Where the rays from a diffuse hit start. All go to the side its normal faces (each is cast
+// only with cos theta > 0), and the self-hit bound moves the hit point off the surface to that
+// side whatever the direction (OffsetRayOrigin): one point, moved once a vertex. Under the other
 // methods LeaveSurface and ShadowRay decide for each ray.
 static void Depart(Path *path, const RayHit *hit) {
     const Methods *methods = &path->settings->methods;
@@ -190,16 +174,14 @@ static void Depart(Path *path, const RayHit *hit) {
     path->awayShare = (real)(4 * tilt) + 16 * kUnitRoundoff;
 }
 
-// Where a ray from the departure point starts its search. It never meets the triangle it leaves
-// when it goes away from that triangle's exact plane: the departure point is on the side the
-// unit normal faces, or on the plane (OffsetRayOrigin's bound, which holds while the normal is
-// known to 2^-10: normalKnown), so the exact plane is then at t <= 0, and RobustPlaneHit, whose
-// bound holds wherever it answers, refuses every t that is not above its bound. The triangle is
-// then passed over (as under --self-hit skip), which changes no answer. Going away is certain
-// where the rounded n.d exceeds awayShare of sum |d_i|: the unit normal leans from the exact
-// one by at most 2 |n - n*| / |n| <= 2 sum nError_i / max |n_i| (SetUpTriangle's bounds), taken
-// twice over, and 16 u covers the rounding of n.d (gamma(3) of the same sum) and of the unit
-// normal itself.
+// Where a ray from the departure point starts its search. Going away from the exact plane of
+// the triangle it leaves, it can never meet it: the departure point is on the side the normal
+// faces, or on the plane (OffsetRayOrigin's bound, which holds while the normal is known to
+// 2^-10: normalKnown), so that plane is at t <= 0, which RobustPlaneHit's sound bound refuses.
+// The triangle is then passed over, as under --self-hit skip: no answer changes. Going away is
+// certain where the rounded n.d exceeds awayShare of sum |d_i|: the unit normal leans from the
+// exact one by at most 2 |n - n*| / |n| <= 2 sum nError_i / max |n_i|, taken twice over, and
+// 16 u covers the rounding of n.d (gamma(3) of the same sum) and of the unit normal.
 static RayStart Start(const Path *path, const RayHit *hit, vec3 dir) {
     bool away = path->leaves >= 0 &&
                 Dot(dir, hit->normal) >

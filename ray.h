@@ -716,9 +716,6 @@ bool Emits(const Material *m);
 // The surface area of an emitting shape.
 real EmitterArea(const Scene *scene, const Emitter *e);
 
-// An emitting shape, with its area, (a triangle) its unit normal, and its radiance.
-Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index);
-
 // ---- commit.cpp and kernel.cpp: the committed scene ------------------------------------------
 
 // Builds scene->layout from the scene's triangles (see SceneLayout): once per render, after the

@@ -18,6 +18,23 @@ static bool MaterialIsUsed(const Scene *scene, int material) {
     return false;
 }
 
+bool Emits(const Material *m) { return m->emit.x > 0 || m->emit.y > 0 || m->emit.z > 0; }
+
+// An emitting shape, with what every light sample reads: its area, (a triangle) its unit
+// normal, and its radiance, once per render.
+static Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index) {
+    Emitter e = {shape, index, 0, {0, 0, 0}, {0, 0, 0}};
+    e.area = EmitterArea(scene, &e);
+    if (shape == SHAPE_SPHERE) {
+        e.emit = scene->materials[scene->spheres[index].material].emit;
+        return e;
+    }
+    const Triangle *t = &scene->triangles[index];
+    e.normal = SafeNormalize(Cross(t->b - t->a, t->c - t->a));
+    e.emit = scene->materials[t->material].emit;
+    return e;
+}
+
 // `shading path`: the shapes whose material emits, for next-event estimation.
 static void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters) {
     auto emits = [scene](int material) { return Emits(&scene->materials[material]); };
