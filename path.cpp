@@ -85,8 +85,6 @@ static real PowerHeuristic(real a, real b) {
 
 // ---- emitters: the shapes whose material has `emit` (PlanEffects lists them) ---------------
 
-bool Emits(const Material *m) { return m->emit.x > 0 || m->emit.y > 0 || m->emit.z > 0; }
-
 real EmitterArea(const Scene *scene, const Emitter *e) {
     if (e->shape == SHAPE_SPHERE) {
         real r = scene->spheres[e->index].radius;
@@ -110,7 +108,7 @@ static void SampleEmitter(const Scene *scene, const Emitter *e, real u, real v, 
     const Triangle *t = &scene->triangles[e->index];
     real root = std::sqrt(u), b0 = 1 - root, b1 = v * root;
     *p = b0 * t->a + b1 * t->b + (1 - b0 - b1) * t->c;
-    *n = SafeNormalize(Cross(t->b - t->a, t->c - t->a));
+    *n = e->normal;
 }
 
 // The density, per solid angle at the shaded point, with which next-event estimation picks a
@@ -137,10 +135,68 @@ struct Path {
     RayStart start; // and what it must not hit (the surface it leaves)
     RayKind kind;
     real scatterPdf; // the density the last diffuse bounce drew the ray with; 0: not diffuse
+    bool departs;    // the rays from this diffuse hit start at `departure` (Depart)
+    vec3 departure;
+    int leaves;     // the triangle they may pass over when they go plainly away from it; -1: none
+    real awayShare; // how plainly (Start)
 };
+
+// RecordRay for a path's rays, with no call where no tree is being drawn (every pixel but the
+// one `--pixel` names).
+static int Record(RayKind kind, const Ray *ray, TraceLog *log) {
+    return log->tree ? RecordRay(kind, ray, log) : -1;
+}
 
 static real Random(const Path *path, Decision d) {
     return PathRandom(&path->sample, path->bounce, d);
+}
+
+// Where the rays from a diffuse hit start. All go to the side its normal faces (each is cast
+// only with cos theta > 0), and the self-hit bound moves the hit point off the surface to that
+// side whatever the direction (OffsetRayOrigin): one point, moved once a vertex. Under the other
+// methods LeaveSurface and ShadowRay decide for each ray.
+static void Depart(Path *path, const RayHit *hit) {
+    const Methods *methods = &path->settings->methods;
+    path->departs = methods->selfHit == SELF_HIT_BOUND;
+    if (path->departs)
+        path->departure = OffsetRayOrigin(hit, hit->normal);
+    const Scene *scene = path->scene;
+    path->leaves = -1;
+    if (!path->departs || methods->triangle != TRIANGLE_WATERTIGHT ||
+        hit->shape != SHAPE_TRIANGLE || !LayoutIsCurrent(scene))
+        return;
+    const TriangleSetUp *u = &scene->layout.setUps[hit->index];
+    if (!u->normalKnown)
+        return;
+    dvec3 n = u->n, e = u->nError;
+    double tilt = (e.x + e.y + e.z) / std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
+    path->leaves = hit->index;
+    path->awayShare = (real)(4 * tilt) + 16 * kUnitRoundoff;
+}
+
+// Where a ray from the departure point starts its search. Going away from the exact plane of
+// the triangle it leaves, it can never meet it: the departure point is on the side the normal
+// faces, or on the plane (OffsetRayOrigin's bound, which holds while the normal is known to
+// 2^-10: normalKnown), so that plane is at t <= 0, which RobustPlaneHit's sound bound refuses.
+// The triangle is then passed over, as under --self-hit skip: no answer changes. Going away is
+// certain where the rounded n.d exceeds awayShare of sum |d_i|: the unit normal leans from the
+// exact one by at most 2 |n - n*| / |n| <= 2 sum nError_i / max |n_i|, taken twice over, and
+// 16 u covers the rounding of n.d (gamma(3) of the same sum) and of the unit normal.
+static RayStart Start(const Path *path, const RayHit *hit, vec3 dir) {
+    bool away = path->leaves >= 0 &&
+                Dot(dir, hit->normal) >
+                    path->awayShare * (std::fabs(dir.x) + std::fabs(dir.y) + std::fabs(dir.z));
+    return away ? RayStart{0, SHAPE_TRIANGLE, path->leaves} : kFromTheEye;
+}
+
+// ShadowRay from the hit to `target`, from the departure point when there is one.
+static bool CastShadow(const Path *path, const RayHit *hit, vec3 target, Ray *ray,
+                       RayStart *start) {
+    if (!path->departs)
+        return ShadowRay(hit, target, &path->settings->methods, ray, start);
+    *ray = {path->departure, target - path->departure};
+    *start = Start(path, hit, ray->dir);
+    return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
 }
 
 // Whether point p (unit normal n) of emitter e can face the shaded hit at all: from outside a
@@ -163,10 +219,10 @@ static bool EmitterVisible(Path *path, const RayHit *hit, const Emitter *e, vec3
     const Methods *methods = &path->settings->methods;
     Ray shadow;
     RayStart start;
-    if (!ShadowRay(hit, p, methods, &shadow, &start))
+    if (!CastShadow(path, hit, p, &shadow, &start))
         return false;
     path->log->stats.shadow++;
-    int node = RecordRay(RAY_SHADOW, &shadow, path->log);
+    int node = Record(RAY_SHADOW, &shadow, path->log);
     RayHit blocker;
     bool found = FindNearestHitFrom(path->scene, *methods, &shadow, &start, kInfinity, &blocker);
     bool visible = found && blocker.shape == e->shape && blocker.index == e->index;
@@ -192,9 +248,9 @@ static color PointLights(Path *path, const RayHit *hit, color rho) {
             continue;
         Ray shadow;
         RayStart start;
-        if (ShadowRay(hit, light.position, &path->settings->methods, &shadow, &start)) {
+        if (CastShadow(path, hit, light.position, &shadow, &start)) {
             path->log->stats.shadow++;
-            int node = RecordRay(RAY_SHADOW, &shadow, path->log);
+            int node = Record(RAY_SHADOW, &shadow, path->log);
             bool blocked = AnyHitFrom(path->scene, path->settings->methods, &shadow, &start, 1);
             if (node >= 0)
                 (*path->log->tree)[node].hit = blocked;
@@ -224,13 +280,11 @@ static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
     if (!(cosTheta > 0) || !(cosLight > 0) || !Faces(path->scene, e, hit, p, n) ||
         !EmitterVisible(path, hit, e, p))
         return {0, 0, 0};
-    int material = e->shape == SHAPE_SPHERE ? path->scene->spheres[e->index].material
-                                            : path->scene->triangles[e->index].material;
     real pdf = EmitterPdf(emitters.size(), e->area, dist2, cosLight);
     real weight = path->settings->path.lights == LIGHTS_MIS && !last // (no scattered ray follows
                       ? PowerHeuristic(pdf, ScatterPdf(path->settings->path.scatter, cosTheta))
                       : 1; // the last vertex to share the light with)
-    return (weight * cosTheta / (kPi * pdf)) * (rho * path->scene->materials[material].emit);
+    return (weight * cosTheta / (kPi * pdf)) * (rho * e->emit);
 }
 
 // The share of an emitter's light that a path adds when its ray hits it: all of it after the
@@ -242,12 +296,36 @@ static real EmissionWeight(const Path *path, const RayHit *hit) {
         return 1;
     if (lights == LIGHTS_NEE)
         return 0;
-    Emitter e = {hit->shape, hit->index, 0};
+    Emitter e = {hit->shape, hit->index, 0, {0, 0, 0}, {0, 0, 0}};
     real distance = hit->t * SafeLength(path->ray.dir);
     real cosLight = std::fabs(Dot(hit->normal, path->ray.dir)) / SafeLength(path->ray.dir);
     real pdf = EmitterPdf(path->settings->effects.emitters.size(), EmitterArea(path->scene, &e),
                           distance * distance, cosLight);
     return PowerHeuristic(path->scatterPdf, pdf);
+}
+
+// A mirror's or glass's next ray, picked by the number `pick` (Bounce); false at the last
+// vertex, where none follows. The unit incoming direction is made only here: a diffuse
+// bounce, most of them, does not need it.
+static bool Specular(Path *path, const RayHit *hit, const Material *m, real pick, bool last) {
+    if (last)
+        return false;
+    const Methods *methods = &path->settings->methods;
+    vec3 d = SafeNormalize(path->ray.dir), n = hit->normal;
+    if (pick < m->mirror) {
+        LeaveSurface(hit, Reflect(d, n), methods, &path->ray, &path->start);
+        return true;
+    }
+    real eta = hit->frontFace ? 1 / m->ior : m->ior, cosI = -Dot(d, n);
+    real reflectance = methods->fresnel == FRESNEL_SCHLICK ? SchlickReflectance(cosI, eta)
+                                                           : FresnelReflectance(cosI, eta);
+    vec3 refracted;
+    bool reflect = (pick - m->mirror) < reflectance * (1 - m->mirror) || // (the same number,
+                   !Refract(d, n, eta, &refracted);                      // past K)
+    if (!reflect)
+        path->kind = RAY_REFRACTION;
+    LeaveSurface(hit, reflect ? Reflect(d, n) : refracted, methods, &path->ray, &path->start);
+    return true;
 }
 
 // The next ray of the path from a hit on material m, and what the bounce does to the
@@ -259,39 +337,26 @@ static real EmissionWeight(const Path *path, const RayHit *hit) {
 // At the last vertex a chain allows (`last`), no ray follows: a diffuse surface still adds the
 // light straight from the lights, as the other shadings' shadow rays do at any depth.
 static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) {
-    const Methods *methods = &path->settings->methods;
-    vec3 d = SafeNormalize(path->ray.dir), n = hit->normal;
     real pick = Random(path, PICK_SURFACE);
     path->scatterPdf = 0;
     path->kind = RAY_REFLECTION;
-    if (pick < m->mirror) {
-        if (last)
-            return false;
-        LeaveSurface(hit, Reflect(d, n), methods, &path->ray, &path->start);
-        return true;
-    }
-    if (m->ior > 0) {
-        real eta = hit->frontFace ? 1 / m->ior : m->ior, cosI = -Dot(d, n);
-        real reflectance = methods->fresnel == FRESNEL_SCHLICK ? SchlickReflectance(cosI, eta)
-                                                               : FresnelReflectance(cosI, eta);
-        vec3 refracted;
-        bool reflect = (pick - m->mirror) < reflectance * (1 - m->mirror) || // (the same number,
-                       !Refract(d, n, eta, &refracted);                      // past K)
-        if (last)
-            return false;
-        if (!reflect)
-            path->kind = RAY_REFRACTION;
-        LeaveSurface(hit, reflect ? Reflect(d, n) : refracted, methods, &path->ray, &path->start);
-        return true;
-    }
+    if (pick < m->mirror || m->ior > 0)
+        return Specular(path, hit, m, pick, last);
     color rho = m->diffuse;
     if (!(MaxComponent(rho) > 0)) // black: it scatters nothing, not even the lights' light
         return false;
-    path->light = path->light +
-                  path->through * (PointLights(path, hit, rho) + Emitters(path, hit, rho, last));
+    Depart(path, hit);
+    // The emitters' shadow ray first, then the point lights' (the order the ray tree has always
+    // shown). Without point lights, PointLights' +0 would add nothing: the sum's sign of zero
+    // may differ, but the light gathered, which starts at +0, never becomes -0 either way
+    color direct = Emitters(path, hit, rho, last);
+    if (!path->scene->lights.empty())
+        direct = PointLights(path, hit, rho) + direct;
+    path->light = path->light + path->through * direct;
     if (last)
         return false;
     ScatterMethod method = path->settings->path.scatter;
+    vec3 n = hit->normal;
     vec3 dir = ScatterDirection(method, n, Random(path, SCATTER_U), Random(path, SCATTER_V));
     real cosTheta = Dot(dir, n);
     if (!(cosTheta > 0))
@@ -302,7 +367,10 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     path->through = path->through *
                     (method == SCATTER_COSINE ? rho : (cosTheta / (kPi * path->scatterPdf)) * rho);
     path->kind = RAY_DIFFUSE;
-    LeaveSurface(hit, dir, methods, &path->ray, &path->start);
+    if (!path->departs)
+        LeaveSurface(hit, dir, &path->settings->methods, &path->ray, &path->start);
+    else
+        path->ray = {path->departure, dir}, path->start = Start(path, hit, dir);
     return true;
 }
 
@@ -339,13 +407,13 @@ static void FinishTree(const Path *path, const std::vector<PathNode> &nodes) {
 color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, int i,
                 int j, int s, TraceLog *log) {
     PathSample sample = PathKey(settings->path.seed, i, j, s);
-    Path path = {scene,     settings, log,         sample,      0, {0, 0, 0},
-                 {1, 1, 1}, *primary, kFromTheEye, RAY_PRIMARY, 0};
+    Path path = {scene,       settings,    log, sample, 0,         {0, 0, 0}, {1, 1, 1}, *primary,
+                 kFromTheEye, RAY_PRIMARY, 0,   false,  {0, 0, 0}, -1,        0};
     std::vector<PathNode> nodes;
     int parent = log->current;
     for (int number = 1; number <= settings->depth; number++, path.bounce++) {
         CountRay(path.kind, &log->stats);
-        int node = RecordRay(path.kind, &path.ray, log);
+        int node = Record(path.kind, &path.ray, log);
         if (node >= 0)
             nodes.push_back({node, path.light, path.through});
         RayHit hit;

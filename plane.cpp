@@ -32,6 +32,11 @@ static dvec3 CrossTerms(dvec3 a, dvec3 b) {
             std::fabs(a.x * b.y) + std::fabs(a.y * b.x)};
 }
 
+// Kept out of line: the rare tiers and set-ups, so that the common path through RobustPlaneHit
+// is a small function whose values stay in registers.
+#define RT_COLD __attribute__((noinline, cold))
+#define RT_INLINE inline __attribute__((always_inline))
+
 // Unit roundoff of double, and gamma(n) for it (ray.h has them for `real`).
 const double kU = std::numeric_limits<double>::epsilon() / 2;
 static double GammaD(int n) { return n * kU / (1 - n * kU); }
@@ -126,7 +131,7 @@ static double PlaneError(double t, double denominator, double eN, double eD, dve
 // product with n and the two additions, gamma(4) of sum |n_i (a_i - o_i)|; n.d, gamma(3) of
 // sum |n_i d_i|; each normal component, two edge roundings, the products and the subtraction:
 // gamma(5) of its two products' sizes; the division, gamma(1) of t.
-static double PlainError(const PlaneProblem *p, dvec3 toA, double t, double denominator) {
+static RT_INLINE double PlainError(const PlaneProblem *p, dvec3 toA, double t, double denominator) {
     dvec3 absN = AbsD(p->fixed->n);
     double eN = GammaD(4) * DotD(absN, AbsD(toA));
     double eD = GammaD(3) * DotD(absN, AbsD(p->dir));
@@ -139,7 +144,7 @@ static double PlainError(const PlaneProblem *p, dvec3 toA, double t, double deno
 // operation is within 8 u^2 of its operands' sizes, and no value passes through more than four
 // of them, so 32 u^2 of the first-order terms' sizes bounds what they contribute; rounding the
 // two sums to double and dividing adds 3 u of t.
-static PlaneT WidePlaneT(const PlaneProblem *p) {
+RT_COLD static PlaneT WidePlaneT(const PlaneProblem *p) {
     int k = p->fixed->scale;
     dvec3 b = Widen(p->tri->b), c = Widen(p->tri->c);
     Wide3 e1 = ExactDifference(b, p->a, k), e2 = ExactDifference(c, p->a, k);
@@ -207,7 +212,7 @@ struct Window {
 // is inside the window, whose other half covers the rounding of this test and of SlabInterval
 // (a few u of the same sizes, against 64 u), so moving t into the window would not change it.
 // Almost every hit is decided here, with no division.
-static inline bool WellInside(const PlaneProblem *p, double t, const Window *w) {
+static RT_INLINE bool WellInside(const PlaneProblem *p, double t, const Window *w) {
     const Box *box = w->box;
     double pad = 0.5 * ((double)kBoxAllowance * box->size + OriginPad(w->ray));
     const double q[3] = {p->origin.x + t * p->dir.x, p->origin.y + t * p->dir.y,
@@ -224,7 +229,7 @@ static inline bool WellInside(const PlaneProblem *p, double t, const Window *w) 
 // where the line passes the triangle, not out there. That keeps every hit inside its triangle's
 // window, which is what lets the BVH skip boxes a ray passes outside. A hit on the triangle is
 // inside already (the window is wider than the hit's own error bound), and never moves.
-static bool MoveIntoWindow(Window *w, PlaneT *plane) {
+RT_COLD static bool MoveIntoWindow(Window *w, PlaneT *plane) {
     if (!w->known) {
         SlabRay slab = MakeSlabRay(w->ray);
         SlabInterval(w->box->lo, w->box->hi, w->box->size, &slab, &w->near, &w->far);
@@ -254,7 +259,7 @@ static inline bool IntoWindow(const PlaneProblem *p, Window *w, PlaneT *plane) {
 // of 2 covers many times over. A triangle whose corners are nearly in a line, or a ray that all
 // but skims its plane, fails this: its plain t can be off by far more than the bound says.
 // The normal's half depends on the triangle alone: SetUpTriangle decides it (normalKnown).
-static bool FirstOrderHolds(const PlaneProblem *p, double denominator) {
+static RT_INLINE bool FirstOrderHolds(const PlaneProblem *p, double denominator) {
     dvec3 absD = AbsD(p->dir);
     double eD = GammaD(3) * DotD(AbsD(p->fixed->n), absD) + DotD(p->fixed->nError, absD);
     return p->fixed->normalKnown && eD <= kFirstOrderShare * std::fabs(denominator);
@@ -289,20 +294,58 @@ static bool FindPlaneT(const PlaneProblem *p, Window *w, real tMin, real tMax, P
     return (real)plane->t > tMin && (real)plane->t < tMax && plane->t > plane->error;
 }
 
+// FindPlaneT's answer where tier 1 settles it alone, as almost every hit is: t plainly inside
+// the window, the bound trusted, and t either clearly out of (tMin, tMax) or within
+// kPlainRelativeError of itself. The same operations as FindPlaneT's, in the same order, so the
+// same t, bound and answer; anything else is PLANE_UNSURE, and FindPlaneT starts again.
+enum QuickAnswer { PLANE_MISS, PLANE_HIT, PLANE_UNSURE };
+static RT_INLINE QuickAnswer QuickPlaneT(const PlaneProblem *p, const Ray *ray, real tMin,
+                                         real tMax, PlaneT *plane) {
+    dvec3 toA = Sub(p->a, p->origin);
+    double denominator = DotD(p->fixed->n, p->dir);
+    double t = DotD(p->fixed->n, toA) / denominator;
+    if (!std::isfinite(t)) // the ray is parallel to the plane, or n is 0
+        return PLANE_MISS;
+    double error = PlainError(p, toA, t, denominator);
+    Window window = {&p->fixed->box, ray, false, 0, 0};
+    if (!WellInside(p, t, &window) || !FirstOrderHolds(p, denominator))
+        return PLANE_UNSURE;
+    if (!(t - 2 * error < (double)tMax) || !(t + error > 0) || !(t + 2 * error > (double)tMin))
+        return PLANE_MISS; // beyond or behind
+    if (!(t - error > 0) || error > kPlainRelativeError * std::fabs(t))
+        return PLANE_UNSURE;
+    *plane = {t, error};
+    return (real)t > tMin && (real)t < tMax && t > error ? PLANE_HIT : PLANE_MISS;
+}
+
+// Everything QuickPlaneT leaves open, and a triangle without a set-up: FindPlaneT, from the start.
+RT_COLD static bool SlowPlaneT(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray,
+                               real tMin, real tMax, PlaneT *plane) {
+    PlaneProblem p = {tri, setUp, Widen(tri->a), Widen(ray->origin), Widen(ray->dir)};
+    Window window = {&setUp->box, ray, false, 0, 0};
+    return FindPlaneT(&p, &window, tMin, tMax, plane);
+}
+RT_COLD static bool HitWithoutSetUp(const Triangle *tri, const Ray *ray, real tMin, real tMax,
+                                    RayHit *hit) {
+    TriangleSetUp own;
+    SetUpTriangle(tri, &own);
+    return RobustPlaneHit(tri, &own, ray, tMin, tMax, hit);
+}
+
 // The hit record for a triangle whose interior the ray passes through (the caller has decided
 // that): t from the plane (FindPlaneT). The point is o + t d, which lies on the plane to within
 // its bound: the rounding of o + t d itself, and t's error times |d|.
 bool RobustPlaneHit(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray, real tMin,
                     real tMax, RayHit *hit) {
-    TriangleSetUp own;
     if (!setUp)
-        SetUpTriangle(tri, &own), setUp = &own;
+        return HitWithoutSetUp(tri, ray, tMin, tMax, hit);
     if (!setUp->hasArea)
         return false; // no area: no plane, no normal
     PlaneProblem p = {tri, setUp, Widen(tri->a), Widen(ray->origin), Widen(ray->dir)};
-    Window window = {&setUp->box, ray, false, 0, 0};
     PlaneT plane;
-    if (!FindPlaneT(&p, &window, tMin, tMax, &plane))
+    QuickAnswer quick = QuickPlaneT(&p, ray, tMin, tMax, &plane);
+    if (quick == PLANE_MISS ||
+        (quick == PLANE_UNSURE && !SlowPlaneT(tri, setUp, ray, tMin, tMax, &plane)))
         return false;
 
     real t = (real)plane.t;

@@ -325,7 +325,9 @@ const Methods kHandoutMethods = {SPHERE_TEXTBOOK, TRIANGLE_CRAMER,   SELF_HIT_EP
 struct Emitter {
     ShapeKind shape;
     int index;
-    real area; // EmitterArea, once per render (every light sample divides by it)
+    real area;   // EmitterArea, once per render (every light sample divides by it)
+    vec3 normal; // a triangle's unit normal, once per render (every light sample uses it)
+    color emit;  // its material's emitted radiance
 };
 
 // Which effects a render can need, decided once per render from the scene and the settings

@@ -18,22 +18,39 @@ static bool MaterialIsUsed(const Scene *scene, int material) {
     return false;
 }
 
+bool Emits(const Material *m) { return m->emit.x > 0 || m->emit.y > 0 || m->emit.z > 0; }
+
+// An emitting shape, with what every light sample reads: its area, (a triangle) its unit
+// normal, and its radiance, once per render.
+static Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index) {
+    Emitter e = {shape, index, 0, {0, 0, 0}, {0, 0, 0}};
+    e.area = EmitterArea(scene, &e);
+    if (shape == SHAPE_SPHERE) {
+        e.emit = scene->materials[scene->spheres[index].material].emit;
+        return e;
+    }
+    const Triangle *t = &scene->triangles[index];
+    e.normal = SafeNormalize(Cross(t->b - t->a, t->c - t->a));
+    e.emit = scene->materials[t->material].emit;
+    return e;
+}
+
 // `shading path`: the shapes whose material emits, for next-event estimation.
 static void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters) {
     auto emits = [scene](int material) { return Emits(&scene->materials[material]); };
     // (A shape without area, or of an area beyond the range of numbers, can be neither hit nor
     // sampled: it is left out, so no density is ever divided by 0 or infinity.)
-    auto add = [scene, emitters](Emitter e) {
-        e.area = EmitterArea(scene, &e);
+    auto add = [scene, emitters](ShapeKind shape, int index) {
+        Emitter e = MakeEmitter(scene, shape, index);
         if (e.area > 0 && std::isfinite(e.area))
             emitters->push_back(e);
     };
     for (int i = 0; i < (int)scene->spheres.size(); i++)
         if (emits(scene->spheres[i].material))
-            add({SHAPE_SPHERE, i, 0});
+            add(SHAPE_SPHERE, i);
     for (int i = 0; i < (int)scene->triangles.size(); i++)
         if (emits(scene->triangles[i].material))
-            add({SHAPE_TRIANGLE, i, 0});
+            add(SHAPE_TRIANGLE, i);
 }
 
 void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects) {
