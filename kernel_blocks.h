@@ -49,6 +49,42 @@ static RT_INLINE void ShearLanes(const TriangleBlock *b, int corner, const LaneR
     *y = Ay - r->sy * Az;
 }
 
+// One bit a lane, lane i's at bit i, of a mask whose lanes are each all ones or none. Vector
+// extensions have no "movemask": each lane is narrowed to one byte, the bytes read as one word,
+// and one multiplication moves each byte's low bit to its own place. (Byte k's bit, at 8k, is
+// multiplied by 2^(top - 7k) among other powers; every product lands on a bit of its own, so no
+// carry disturbs the kLanes bits from `top` up.) With AVX2 that is a few instructions where a
+// loop over the lanes was about forty.
+typedef int MaskInts __attribute__((vector_size(sizeof(Lanes)))); // a LaneMask as ints
+typedef int FourInts __attribute__((vector_size(16)));
+typedef char SixteenBytes __attribute__((vector_size(16)));
+static RT_INLINE unsigned LaneBits(LaneMask mask) {
+    MaskInts ints;
+    memcpy(&ints, &mask, sizeof ints);
+#ifdef RT_FLOAT // eight lanes of one int: each half of the ints to bytes, then the halves joined
+    typedef char FourBytes __attribute__((vector_size(4)));
+    FourInts low = __builtin_shufflevector(ints, ints, 0, 1, 2, 3);
+    FourInts high = __builtin_shufflevector(ints, ints, 4, 5, 6, 7);
+    SixteenBytes lowBytes, highBytes;
+    memcpy(&lowBytes, &low, 16), memcpy(&highBytes, &high, 16);
+    FourBytes a = __builtin_shufflevector(lowBytes, lowBytes, 0, 4, 8, 12);
+    FourBytes b = __builtin_shufflevector(highBytes, highBytes, 0, 4, 8, 12);
+    uint32_t lo, hi;
+    memcpy(&lo, &a, 4), memcpy(&hi, &b, 4);
+    uint64_t word = (uint64_t)hi << 32 | lo;
+    return (unsigned)(((word & 0x0101010101010101u) * 0x0102040810204080u) >> 56);
+#else // four lanes of two ints: one int of each, then one byte of each
+    typedef char FourBytes __attribute__((vector_size(4)));
+    FourInts one = __builtin_shufflevector(ints, ints, 0, 2, 4, 6);
+    SixteenBytes bytes;
+    memcpy(&bytes, &one, sizeof bytes);
+    FourBytes each = __builtin_shufflevector(bytes, bytes, 0, 4, 8, 12);
+    uint32_t word;
+    memcpy(&word, &each, sizeof word);
+    return (unsigned)(((uint64_t)(word & 0x01010101u) * 0x01020408u >> 24) & 0xf);
+#endif
+}
+
 // The lanes whose triangles survive EdgesDisagree (watertight.cpp), as bits: the same edge
 // functions, U = Cx By - Cy Bx, V = Ax Cy - Ay Cx, W = Bx Ay - By Ax, and a triangle is out when
 // two of them have strictly opposite signs. *sure: the survivors whose three edge functions are
@@ -66,20 +102,12 @@ static RT_INLINE unsigned Survivors(const TriangleBlock *b, const LaneRay *r, un
     LaneMask out = ((u < zero) & (v > zero)) | ((u > zero) & (v < zero)) |
                    ((w < zero) & ((u > zero) | (v > zero))) |
                    ((w > zero) & ((u < zero) | (v < zero)));
-    // Most blocks have no survivor: one test of all lanes at once, as four 64-bit words, before
-    // the lanes are looked at one by one
-    uint64_t word[4];
-    memcpy(word, &out, sizeof word);
-    if ((word[0] & word[1] & word[2] & word[3]) == ~uint64_t(0))
+    unsigned live = ~LaneBits(out) & ((1u << kLanes) - 1);
+    if (live == 0) // most blocks
         return 0;
     LaneMask certain =
         ((u < zero) | (u > zero)) & ((v < zero) | (v > zero)) & ((w < zero) | (w > zero));
-    unsigned live = 0, known = 0;
-    for (int i = 0; i < kLanes; i++) {
-        live |= (unsigned)(out[i] == 0) << i;
-        known |= (unsigned)(certain[i] != 0) << i;
-    }
-    *sure = live & known;
+    *sure = live & LaneBits(certain);
     return live;
 }
 
