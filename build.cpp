@@ -5,7 +5,7 @@
 // bounding volume hierarchies", 2007; pbrt-v4 §7.3). One pass bins the centroids on all three
 // axes at once, each bin keeping its triangles' count and the union of their boxes; a sweep
 // over each axis's bins then prices every boundary, and the cheapest wins, or a leaf. The boxes
-// are vectors of four numbers (GCC/Clang vector extensions, as in kernel.cpp), and with AVX2
+// are vectors of four numbers (GCC/Clang vector extensions, as in kernel_blocks.h), and with AVX2
 // (the kernel's dispatch) one vector is one instruction: min, max and comparison are exact, so
 // every box has the bits of TriangleBox's, and the tree is the same on any machine.
 #include "ray.h"
@@ -23,7 +23,7 @@ const int kBins = 16;
 const int kMaxLeafBlocks = 4;
 
 // Four numbers at once: x, y, z and a fourth lane that is not used (Bounds, BuildItem). Vectors
-// are passed by pointer, as in kernel.cpp: a 32-byte vector is passed differently with AVX.
+// are passed by pointer, as in kernel_blocks.h: a 32-byte vector is passed differently with AVX.
 typedef real Quad4 __attribute__((vector_size(4 * sizeof(real))));
 typedef int Int4 __attribute__((vector_size(16)));
 typedef unsigned UInt4 __attribute__((vector_size(16)));
@@ -33,7 +33,7 @@ typedef unsigned UInt4 __attribute__((vector_size(16)));
 #else
 #define RT_AVX2
 #endif
-#define RT_INLINE inline __attribute__((always_inline))
+
 static RT_INLINE void Load(Quad4 *v, const real *p) { memcpy(v, p, sizeof *v); }
 static RT_INLINE void Store(real *p, const Quad4 *v) { memcpy(p, v, sizeof *v); }
 static RT_INLINE void Splat(Quad4 *v, real x) { *v = Quad4{x, x, x, x}; }
@@ -114,15 +114,14 @@ struct Bins {
 static_assert(kBins <= 32, "a bin's bit in an unsigned");
 
 // An item's bins, the three found at once: the whole part of f = (c - lo) scale, at most the
-// last. That is f's conversion, read as unsigned, and the least of it and the last (a NaN or an
-// f beyond the ints converts to 2^31, which gives the last, as f's own least with the last
-// would; f is never below 0).
+// last. f is first cut to the last bin's number (a NaN, which compares false, becomes it too),
+// so that its conversion to int is always defined; f is never below 0 (c >= lo).
 static RT_INLINE UInt4 BinsOf(const BuildItem *item, const Quad4 *lo, const Quad4 *scale) {
-    Quad4 centre;
+    Quad4 centre, last;
     LoadCentre(item, &centre);
-    UInt4 last = {kBins - 1, kBins - 1, kBins - 1, kBins - 1};
-    UInt4 k = (UInt4) __builtin_convertvector((centre - *lo) * *scale, Int4);
-    return k < last ? k : last;
+    Splat(&last, kBins - 1);
+    Quad4 f = (centre - *lo) * *scale;
+    return (UInt4) __builtin_convertvector(f < last ? f : last, Int4);
 }
 
 // The item's box added to its bins (`k`, BinsOf), each found by the byte offset of its place in

@@ -325,7 +325,8 @@ static void BuildTree(const std::vector<Triangle> &triangles, SceneLayout *layou
     int blocks = 0;
     NumberLeaves(&b, {0, 0}, &blocks, &leaves);
     layout->blocks.resize(blocks); // (the items are no longer needed)
-    // Both threads fill the blocks, a share of leaves at a time, once one has collapsed the tree
+    // One thread fills the blocks, a share of leaves at a time, while the other collapses the
+    // tree; then both fill them
     std::atomic<size_t> next(0);
     auto fill = [&] {
         for (size_t first; (first = next.fetch_add(kLeafShare)) < leaves.size();)

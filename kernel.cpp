@@ -5,10 +5,10 @@
 //   1. The watertight test's first step (shear the corners, compute the edge functions, reject
 //      a triangle whose edges disagree; watertight.cpp, EdgesDisagree) runs on a whole block at
 //      once, with GCC/Clang vector extensions: `Lanes` holds kLanes numbers, and every line
-//      below is the scalar line with `Lanes` for `real`, the same operations in the same order,
-//      so each lane rounds exactly as the scalar code does. Only the triangles that survive go
-//      on to the rest of the reference test: where their three edge functions have a certain
-//      sign (none 0 or NaN), what IntersectSheared (watertight.cpp) does next is to call
+//      of kernel_blocks.h is the scalar line with `Lanes` for `real`, the same operations in the
+//      same order, so each lane rounds exactly as the scalar code does. Only the triangles that
+//      survive go on to the rest of the reference test: where their three edge functions have a
+//      certain sign (none 0 or NaN), what IntersectSheared (watertight.cpp) does next is to call
 //      RobustPlaneHit, so the kernel calls it with the same arguments; the others get the whole
 //      reference function (IntersectWatertight), which decides their signs exactly.
 //   2. With a BVH (commit.cpp), a ray visits only the nodes whose boxes its line passes

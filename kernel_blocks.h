@@ -11,7 +11,6 @@
 #else
 #define RT_DISPATCH 0
 #endif
-#define RT_INLINE inline __attribute__((always_inline))
 
 // The helpers below write their vectors through pointers and never return one: a 256-bit vector
 // is returned differently with AVX than without, which clang refuses in the baseline copy and GCC

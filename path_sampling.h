@@ -6,8 +6,6 @@
 
 #include <algorithm>
 
-const real kPi = real(3.14159265358979323846);
-
 // Which path a random number belongs to: the render's seed, the pixel and the sample in it,
 // already hashed (PathKey), since they stay the same along the whole path.
 struct PathSample {
@@ -73,15 +71,6 @@ static real PowerHeuristic(real a, real b) {
 }
 
 // ---- emitters: the shapes whose material has `emit` (PlanEffects lists them) ---------------
-
-real EmitterArea(const Scene *scene, const Emitter *e) {
-    if (e->shape == SHAPE_SPHERE) {
-        real r = scene->spheres[e->index].radius;
-        return 4 * kPi * r * r;
-    }
-    const Triangle *t = &scene->triangles[e->index];
-    return real(0.5) * SafeLength(Cross(t->b - t->a, t->c - t->a));
-}
 
 // A point drawn uniformly over the emitter's surface, and the unit normal there. A sphere: the
 // height z uniform in [-1, 1] (Archimedes again). A triangle: barycentric coordinates from the

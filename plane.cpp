@@ -35,7 +35,6 @@ static dvec3 CrossTerms(dvec3 a, dvec3 b) {
 // Kept out of line: the rare tiers and set-ups, so that the common path through RobustPlaneHit
 // is a small function whose values stay in registers.
 #define RT_COLD __attribute__((noinline, cold))
-#define RT_INLINE inline __attribute__((always_inline))
 
 // Unit roundoff of double, and gamma(n) for it (ray.h has them for `real`).
 const double kU = std::numeric_limits<double>::epsilon() / 2;
@@ -265,6 +264,10 @@ static RT_INLINE bool FirstOrderHolds(const PlaneProblem *p, double denominator)
     return p->fixed->normalKnown && eD <= kFirstOrderShare * std::fabs(denominator);
 }
 
+// t where the ray meets the triangle's plane, in (tMin, tMax), with its bound: tier 1, then tier 2
+// where tier 1's bound cannot decide (the file's opening comment). False if there is none.
+// (QuickPlaneT below repeats tier 1, operation for operation, for the hits it settles alone: a
+// change here is a change there.)
 static bool FindPlaneT(const PlaneProblem *p, Window *w, real tMin, real tMax, PlaneT *plane) {
     dvec3 toA = Sub(p->a, p->origin);
     double denominator = DotD(p->fixed->n, p->dir);
@@ -318,13 +321,14 @@ static RT_INLINE QuickAnswer QuickPlaneT(const PlaneProblem *p, const Ray *ray, 
     return (real)t > tMin && (real)t < tMax && t > error ? PLANE_HIT : PLANE_MISS;
 }
 
-// Everything QuickPlaneT leaves open, and a triangle without a set-up: FindPlaneT, from the start.
-RT_COLD static bool SlowPlaneT(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray,
-                               real tMin, real tMax, PlaneT *plane) {
-    PlaneProblem p = {tri, setUp, Widen(tri->a), Widen(ray->origin), Widen(ray->dir)};
-    Window window = {&setUp->box, ray, false, 0, 0};
-    return FindPlaneT(&p, &window, tMin, tMax, plane);
+// Everything QuickPlaneT leaves open: FindPlaneT, from the start.
+RT_COLD static bool SlowPlaneT(const PlaneProblem *p, const Ray *ray, real tMin, real tMax,
+                               PlaneT *plane) {
+    Window window = {&p->fixed->box, ray, false, 0, 0};
+    return FindPlaneT(p, &window, tMin, tMax, plane);
 }
+
+// A triangle without a set-up (a caller outside the committed scene): one made for it.
 RT_COLD static bool HitWithoutSetUp(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                                     RayHit *hit) {
     TriangleSetUp own;
@@ -344,8 +348,7 @@ bool RobustPlaneHit(const Triangle *tri, const TriangleSetUp *setUp, const Ray *
     PlaneProblem p = {tri, setUp, Widen(tri->a), Widen(ray->origin), Widen(ray->dir)};
     PlaneT plane;
     QuickAnswer quick = QuickPlaneT(&p, ray, tMin, tMax, &plane);
-    if (quick == PLANE_MISS ||
-        (quick == PLANE_UNSURE && !SlowPlaneT(tri, setUp, ray, tMin, tMax, &plane)))
+    if (quick == PLANE_MISS || (quick == PLANE_UNSURE && !SlowPlaneT(&p, ray, tMin, tMax, &plane)))
         return false;
 
     real t = (real)plane.t;

@@ -33,8 +33,10 @@ static std::string Number(real v) {
     // 2^24 a float), so a number whose shortest digits make such a whole number is exactly it,
     // and %.0f writes those same digits.
     const int kWholeDigits = sizeof(real) == sizeof(double) ? 15 : 7;
+    if (v == 0) // (log10 of 0 is -infinity, which no int holds)
+        return text;
     int exponent = (int)std::floor(std::log10(std::fabs((double)v)));
-    if (v != 0 && digits <= exponent + 1 && exponent < kWholeDigits)
+    if (digits <= exponent + 1 && exponent < kWholeDigits)
         snprintf(text, sizeof text, "%.0f", (double)v);
     return text;
 }

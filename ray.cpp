@@ -70,8 +70,9 @@ static void PrintLayout(const Scene *scene, double commitSeconds) {
 static void PrintStats(const RayStats *s, const RenderSettings *settings, double renderSeconds,
                        double totalSeconds) {
     uint64_t total = s->primary + s->shadow + s->reflection + s->refraction + s->diffuse;
-    fprintf(stderr, "image: %dx%d, %d spp, depth %d, %d threads\n", settings->width,
-            settings->height, settings->samplesPerPixel, settings->depth, settings->threads);
+    fprintf(stderr, "image: %dx%d, %d spp, depth %d, %d thread%s\n", settings->width,
+            settings->height, settings->samplesPerPixel, settings->depth, settings->threads,
+            settings->threads == 1 ? "" : "s");
     fprintf(stderr, "time: render %.4f s, whole process %.4f s\n", renderSeconds, totalSeconds);
     fprintf(stderr,
             "rays: primary=%llu shadow=%llu reflection=%llu refraction=%llu diffuse=%llu "
@@ -192,11 +193,12 @@ static bool SquareSize(int width, double h, double v, int *W, int *H) {
     return false;
 }
 
-// --size refused, or the scene's own size warned of, when the pixels of a screen camera would
-// not be square; the message names a size that fits.
-static bool ScreenKeepsSquarePixels(const Options *opt, const Scene *scene, std::string *error,
-                                    std::string *warning) {
-    if (scene->camera.kind != CAMERA_SCREEN)
+// --size refused (false, *error), or the scene's own size warned of (true, *warning), when the
+// pixels of a screen camera would not be square; the message names a size that fits. A probe
+// of single rays (--ray, --rays) draws no image: nothing to check.
+static bool CheckScreenCameraSize(const Options *opt, const Scene *scene, std::string *error,
+                                  std::string *warning) {
+    if (scene->camera.kind != CAMERA_SCREEN || opt->probeRay || !opt->raysFile.empty())
         return true;
     double h = SafeLength(scene->camera.horizontal), v = SafeLength(scene->camera.vertical);
     int width = opt->width ? opt->width : scene->width;
@@ -317,7 +319,7 @@ static int Run(int argc, char **argv) {
     for (const std::string &warning : scene.warnings)
         fprintf(stderr, "ray: %s\n", warning.c_str());
     std::string warning;
-    if (!ScreenKeepsSquarePixels(&opt, &scene, &error, &warning)) {
+    if (!CheckScreenCameraSize(&opt, &scene, &error, &warning)) {
         fprintf(stderr, "ray: %s\n", error.c_str());
         return 2;
     }

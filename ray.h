@@ -27,6 +27,13 @@ typedef double real;
 // No upper bound on a ray parameter.
 const real kInfinity = std::numeric_limits<real>::infinity();
 
+// pi, rounded to `real` (the path tracer's densities and areas).
+const real kPi = real(3.14159265358979323846);
+
+// Always inlined: the speed machinery's small helpers (the kernel, the BVH build, the plane
+// test's common case), where a call would cost more than the work (GCC and clang).
+#define RT_INLINE inline __attribute__((always_inline))
+
 // Unit roundoff u: the largest relative error of one correctly rounded operation (half an ulp
 // of 1). Every tolerance in rt is a multiple of u derived from an error bound, never a fixed
 // distance in scene units, so the program behaves the same at any scene scale.
@@ -544,7 +551,7 @@ inline vec3 SafeNormalize(vec3 v) {
     return length > 0 ? (1 / length) * w : w;
 }
 
-// ---- boxes along a ray (plane.cpp and the BVH in kernel.cpp) --------------------------------
+// ---- boxes along a ray (plane.cpp and the BVH walk, kernel_walk.h) ---------------------------
 
 // Where a ray's line passes through an axis-aligned box, widened by kBoxAllowance of the
 // coordinates' sizes: the box test of the BVH, and the window a triangle's hit must lie in.
@@ -710,10 +717,10 @@ bool HitWatertightTriangles(const Triangle *triangles, int n, int skip, const Ra
 color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, int i,
                 int j, int s, TraceLog *log);
 
-// Whether a material gives off light (`emit` above 0 in some channel).
+// Whether a material gives off light (`emit` above 0 in some channel). (shade.cpp)
 bool Emits(const Material *m);
 
-// The surface area of an emitting shape.
+// The surface area of an emitting shape. (shade.cpp, where the emitters are found)
 real EmitterArea(const Scene *scene, const Emitter *e);
 
 // ---- commit.cpp and kernel.cpp: the committed scene ------------------------------------------

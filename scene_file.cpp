@@ -136,6 +136,22 @@ static bool ReadSphere(const Statement *st, Scene *scene, std::string *error) {
     return true;
 }
 
+// Why no ray can hit triangle t, or null if one can. The intersection's own judgement
+// (SetUpTriangle, at any scale: corners of 1e-200 have an area there, though their plain cross
+// product underflows to 0).
+static const char *Unhittable(const Triangle *t) {
+    TriangleSetUp setUp;
+    SetUpTriangle(t, &setUp);
+    if (setUp.hasArea)
+        return nullptr;
+    bool edgesFinite = true; // in double, as SetUpTriangle works
+    for (vec3 c : {t->b, t->c})
+        edgesFinite = edgesFinite && std::isfinite((double)c.x - t->a.x) &&
+                      std::isfinite((double)c.y - t->a.y) && std::isfinite((double)c.z - t->a.z);
+    return edgesFinite ? "has no area (its corners are on one line)"
+                       : "has edges beyond the range of numbers";
+}
+
 static bool ReadTriangle(const Statement *st, Scene *scene, std::string *error) {
     real v[9];
     Triangle t;
@@ -145,22 +161,9 @@ static bool ReadTriangle(const Statement *st, Scene *scene, std::string *error) 
     t.a = {v[0], v[1], v[2]};
     t.b = {v[3], v[4], v[5]};
     t.c = {v[6], v[7], v[8]};
-    // The intersection's own judgement (SetUpTriangle, at any scale: corners of 1e-200 have an
-    // area there, though their plain cross product underflows to 0)
-    TriangleSetUp setUp;
-    SetUpTriangle(&t, &setUp);
-    double span = 0; // its largest edge component, in double as SetUpTriangle works
-    for (vec3 corner : {t.b, t.c})
-        for (double e :
-             {(double)corner.x - t.a.x, (double)corner.y - t.a.y, (double)corner.z - t.a.z})
-            span = std::max(span, std::fabs(e));
-    if (!setUp.hasArea)
+    if (const char *why = Unhittable(&t))
         scene->warnings.push_back(std::string(st->file) + ":" + std::to_string(st->line) +
-                                  (std::isfinite(span)
-                                       ? ": warning: this triangle has no area (its corners are "
-                                         "on one line), so no ray ever hits it"
-                                       : ": warning: this triangle's edges are beyond the range "
-                                         "of numbers, so no ray ever hits it"));
+                                  ": warning: this triangle " + why + ", so no ray ever hits it");
     scene->triangles.push_back(t);
     return true;
 }

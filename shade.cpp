@@ -20,6 +20,15 @@ static bool MaterialIsUsed(const Scene *scene, int material) {
 
 bool Emits(const Material *m) { return m->emit.x > 0 || m->emit.y > 0 || m->emit.z > 0; }
 
+real EmitterArea(const Scene *scene, const Emitter *e) {
+    if (e->shape == SHAPE_SPHERE) {
+        real r = scene->spheres[e->index].radius;
+        return 4 * kPi * r * r;
+    }
+    const Triangle *t = &scene->triangles[e->index];
+    return real(0.5) * SafeLength(Cross(t->b - t->a, t->c - t->a));
+}
+
 // An emitting shape, with what every light sample reads: its area, (a triangle) its unit
 // normal, and its radiance, once per render.
 static Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index) {

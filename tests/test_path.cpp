@@ -11,7 +11,7 @@
 #include <cstdlib>
 #include <string>
 
-static const double kPi = 3.14159265358979323846;
+static const double kPiDouble = 3.14159265358979323846; // (kPi is rounded to real)
 
 // A path-traced scene of size n x n, the camera at the origin looking down -z.
 static Scene PathScene(int n) {
@@ -82,7 +82,7 @@ static void TestWallUnderPointLight() {
     s.samplesPerPixel = 1;
     RayStats stats = {};
     color c = Pixel(&scene, &s, 16, 16, &stats);
-    double expected = 0.5 / kPi * 4 / 4;
+    double expected = 0.5 / kPiDouble * 4 / 4;
     CHECK_NEAR(c.x, expected, 8 * kRelTol * expected, "rho / pi * I cos / r^2 = 0.5 / pi");
     // Another pixel: its ray from the camera, the hit predicted from the geometry
     Ray ray;
@@ -90,7 +90,7 @@ static void TestWallUnderPointLight() {
     double t = 4 / -(double)ray.dir.z;
     double x = t * ray.dir.x, y = t * ray.dir.y, r2 = x * x + y * y + 4;
     double cosTheta = 2 / std::sqrt(r2);
-    expected = 0.5 / kPi * 4 * cosTheta / r2;
+    expected = 0.5 / kPiDouble * 4 * cosTheta / r2;
     c = Pixel(&scene, &s, 3, 28, &stats);
     CHECK_NEAR(c.y, expected, 64 * kRelTol * expected,
                "off-centre: rho / pi * I cos(theta) / r^2 at the hit the camera ray predicts");

@@ -156,6 +156,8 @@ static void TestBadInput(const std::string &dir) {
                   std::string::npos &&
               err.find("`size 512 384` keeps them square") != std::string::npos,
           "a 4 x 3 screen camera at the default 512 x 512: rendered, with a warning naming a size");
+    CHECK(RunRay(dir, "stretched.scene --ray 0 0 0 0 0 -1", &err) == 0 && err.empty(),
+          "and probed with --ray, which draws no image: no warning (" + err + ")");
     CHECK(RunRay(dir, "--spp 0 -o fresh.png", &err) == 2 && !FileExists(dir + "/fresh.png"),
           "a failed run creates no output file");
     CHECK(RunRay(dir, "--help", &err) == 0 &&

@@ -143,8 +143,7 @@ static void TestSceneVariations() {
         CHECK(ParseSceneText("material m\ntriangle -1e308 0 0 1e308 0 0 0 1e308 0 m\n", "t.scene",
                              &tiny, &error) &&
                   tiny.warnings.size() == 1 &&
-                  tiny.warnings[0].find("t.scene:2: warning: this triangle's edges are beyond") ==
-                      0,
+                  tiny.warnings[0].find("t.scene:2: warning: this triangle has edges beyond") == 0,
               "a triangle whose edges overflow: warned of, as such");
     CHECK(
         ParseSceneText("shading phong\nmaterial m specular 0.5 10\n", "w.scene", &warned, &error) &&
