@@ -345,9 +345,8 @@ bool ParseOptions(int argc, char **argv, Options *opt, std::string *error) {
         k += values;
     }
     if (sceneGiven && opt->compare) {
-        *error = "a scene ('" + opt->scene +
-                 "') changes nothing with --compare, which reads two "
-                 "images";
+        *error =
+            "a scene ('" + opt->scene + "') changes nothing with --compare, which reads two images";
         return false;
     }
     return CheckCombinations(opt, seen, error);

@@ -171,7 +171,6 @@ static int Probe(const Options *opt, const Scene *scene, const RenderSettings *s
     return status;
 }
 
-// The render settings the scene and the options choose.
 // A screen camera's edges fix its shape, so the image must keep it, or the pixels would not be
 // square and spheres would come out as eggs: W : H must be |h| : |v| to within 1 part in 256
 // (less than a pixel's width across 256 pixels). A perspective or lookat camera adapts its
@@ -226,6 +225,7 @@ static bool CheckScreenCameraSize(const Options *opt, const Scene *scene, std::s
     return !opt->width;
 }
 
+// The render settings the scene and the options choose.
 static RenderSettings ChosenSettings(const Options *opt, const Scene *scene) {
     RenderSettings settings;
     settings.width = opt->width ? opt->width : scene->width;
