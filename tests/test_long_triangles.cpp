@@ -12,7 +12,8 @@
 
 static const bool kDouble = sizeof(real) == sizeof(double);
 
-// The ray that first showed the leak: from (1, 1.5, 0) down and along the box, the floor at t = 1.5 exactly.
+// The ray that first showed the leak: from (1, 1.5, 0) down and along the box, the floor at
+// t = 1.5 exactly.
 static void TestCorridorFloor() {
     double length = kDouble ? 1e8 : 1e3;
     Scene box = BoxScene(length, false);
