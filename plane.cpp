@@ -321,11 +321,14 @@ static RT_INLINE QuickAnswer QuickPlaneT(const PlaneProblem *p, const Ray *ray, 
     return (real)t > tMin && (real)t < tMax && t > error ? PLANE_HIT : PLANE_MISS;
 }
 
-// Everything QuickPlaneT leaves open: FindPlaneT, from the start.
-RT_COLD static bool SlowPlaneT(const PlaneProblem *p, const Ray *ray, real tMin, real tMax,
-                               PlaneT *plane) {
-    Window window = {&p->fixed->box, ray, false, 0, 0};
-    return FindPlaneT(p, &window, tMin, tMax, plane);
+// Everything QuickPlaneT leaves open: FindPlaneT, from the start. (It makes its own
+// PlaneProblem: taking the caller's by address would keep that one in memory on the common path,
+// measured at 7% more instructions in RobustPlaneHit.)
+RT_COLD static bool SlowPlaneT(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray,
+                               real tMin, real tMax, PlaneT *plane) {
+    PlaneProblem p = {tri, setUp, Widen(tri->a), Widen(ray->origin), Widen(ray->dir)};
+    Window window = {&setUp->box, ray, false, 0, 0};
+    return FindPlaneT(&p, &window, tMin, tMax, plane);
 }
 
 // A triangle without a set-up (a caller outside the committed scene): one made for it.
@@ -348,7 +351,8 @@ bool RobustPlaneHit(const Triangle *tri, const TriangleSetUp *setUp, const Ray *
     PlaneProblem p = {tri, setUp, Widen(tri->a), Widen(ray->origin), Widen(ray->dir)};
     PlaneT plane;
     QuickAnswer quick = QuickPlaneT(&p, ray, tMin, tMax, &plane);
-    if (quick == PLANE_MISS || (quick == PLANE_UNSURE && !SlowPlaneT(&p, ray, tMin, tMax, &plane)))
+    if (quick == PLANE_MISS ||
+        (quick == PLANE_UNSURE && !SlowPlaneT(tri, setUp, ray, tMin, tMax, &plane)))
         return false;
 
     real t = (real)plane.t;
