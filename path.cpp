@@ -13,8 +13,18 @@
 // the scattered directions and the points drawn on emitters are in path_sampling.h.
 #include "path_sampling.h"
 
-// The decisions of one bounce, each with its own random number.
-enum Decision { PICK_SURFACE, SCATTER_U, SCATTER_V, PICK_EMITTER, EMITTER_U, EMITTER_V, ROULETTE };
+// The decisions of one bounce, each with a hash of its own (PathHash), and the hashes of its two
+// disk points: the scattered direction's and a point on an emitting sphere's (DiskPoint).
+enum Decision {
+    PICK_SURFACE,
+    PICK_EMITTER,
+    EMITTER_UV, // a pair (PathRandomPair)
+    ROULETTE,
+    SCATTER_DISK,
+    EMITTER_DISK = SCATTER_DISK + kDiskDimensions,
+    DECISIONS = EMITTER_DISK + kDiskDimensions
+};
+static_assert(DECISIONS <= kDimensionsPerBounce, "each bounce's numbers must be its own");
 
 // ---- one path --------------------------------------------------------------------------------
 
@@ -169,8 +179,13 @@ static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
     size_t k =
         std::min(emitters.size() - 1, (size_t)(Random(path, PICK_EMITTER) * emitters.size()));
     const Emitter *e = &emitters[k];
-    vec3 p, n;
-    SampleEmitter(path->scene, e, Random(path, EMITTER_U), Random(path, EMITTER_V), &p, &n);
+    vec3 p, n = e->normal;
+    if (e->shape == SHAPE_SPHERE)
+        SampleSphere(&path->scene->spheres[e->index],
+                     DiskPoint(&path->sample, path->bounce, EMITTER_DISK), &p, &n);
+    else
+        p = SampleTriangle(&path->scene->triangles[e->index],
+                           PathRandomPair(&path->sample, path->bounce, EMITTER_UV));
     vec3 toPoint = p - hit->point;
     real dist2 = Dot(toPoint, toPoint), dist = std::sqrt(dist2);
     real cosTheta = Dot(hit->normal, toPoint) / dist, cosLight = std::fabs(Dot(n, toPoint)) / dist;
@@ -254,7 +269,7 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
         return false;
     ScatterMethod method = path->settings->path.scatter;
     vec3 n = hit->normal;
-    vec3 dir = ScatterDirection(method, n, Random(path, SCATTER_U), Random(path, SCATTER_V));
+    vec3 dir = ScatterDirection(method, n, DiskPoint(&path->sample, path->bounce, SCATTER_DISK));
     real cosTheta = Dot(dir, n);
     if (!(cosTheta > 0))
         return false;

@@ -22,13 +22,24 @@ static PathSample PathKey(int seed, int i, int j, int s) {
         z = MixWord(z, word);
     return {z};
 }
+// The hashes each bounce may take: its decisions (path.cpp) and the tries of its disk points.
+const int kDimensionsPerBounce = 16;
 static uint64_t PathHash(const PathSample *p, int bounce, int dimension) {
-    return MixWord(p->key, (uint64_t)bounce * 16 + (uint64_t)dimension);
+    return MixWord(p->key, (uint64_t)bounce * kDimensionsPerBounce + (uint64_t)dimension);
 }
 
 // A random number in [0, 1) from 24 of the bits: exact in float too, and below 1.
 static real PathRandom(const PathSample *p, int bounce, int dimension) {
     return real((PathHash(p, bounce, dimension) >> 40) * (1.0 / 16777216.0));
+}
+
+// Two such numbers from one hash: its top 24 bits and the 24 below them. Every bit of the
+// finaliser's output depends on every bit of its input, so the two are as independent as two
+// hashes would be, for one hash's work.
+static vec2 PathRandomPair(const PathSample *p, int bounce, int dimension) {
+    uint64_t bits = PathHash(p, bounce, dimension);
+    return {real((bits >> 40) * (1.0 / 16777216.0)),
+            real((bits >> 16 & 0xffffff) * (1.0 / 16777216.0))};
 }
 
 // Two unit vectors that make an orthonormal basis with the unit n (Duff et al., "Building an
@@ -47,17 +58,45 @@ static real ScatterPdf(ScatterMethod method, real cosTheta) {
     return method == SCATTER_COSINE ? cosTheta / kPi : 1 / (2 * kPi);
 }
 
-// A random direction on the hemisphere around the unit n. Cosine-weighted: a uniform point on
-// the unit disk lifted onto the hemisphere (Malley's method; Ray Tracing in One Weekend's
-// normal + random_unit_vector draws the same density). Uniform: cos(theta) uniform in [0, 1)
-// (Archimedes: equal heights cut equal areas from a sphere).
-static vec3 ScatterDirection(ScatterMethod method, vec3 n, real u, real v) {
-    real cosTheta = method == SCATTER_COSINE ? std::sqrt(1 - u) : 1 - u;
-    real sinTheta = std::sqrt(std::max(real(0), 1 - cosTheta * cosTheta));
-    real phi = 2 * kPi * v;
+// A uniform point (x, y) of the unit disk, from the hashes [first, first + kDiskDimensions) of
+// this bounce, a pair of numbers from each (PathRandomPair): points of the square [-1, 1)^2
+// until one falls inside (Ray Tracing in One Weekend's random_in_unit_disk; each try falls
+// inside with probability pi/4). The directions below are made from it with square roots alone:
+// no sine or cosine, which cost more than the tries. A path's numbers are keyed by their use, so
+// the tries are bounded: if all kDiskTries miss (a chance of (1 - pi/4)^5, about 1 in 2,200),
+// one more pair gives the point by radius and angle, r = sqrt(u), phi = 2 pi v, which is
+// uniform too; either way the point is uniform.
+const int kDiskTries = 5, kDiskDimensions = kDiskTries + 1;
+static vec2 DiskPoint(const PathSample *p, int bounce, int first) {
+    for (int k = 0; k < kDiskTries; k++) {
+        vec2 u = PathRandomPair(p, bounce, first + k);
+        real x = 2 * u.x - 1, y = 2 * u.y - 1; // exact: 24 bits of [0, 1)
+        if (x * x + y * y < 1)
+            return {x, y};
+    }
+    vec2 u = PathRandomPair(p, bounce, first + kDiskTries);
+    real r = std::sqrt(u.x), phi = 2 * kPi * u.y;
+    return {r * std::cos(phi), r * std::sin(phi)};
+}
+
+// A random direction on the hemisphere around the unit n, from a uniform point (x, y) of the
+// unit disk, where r^2 = x^2 + y^2 is uniform in [0, 1) and (x, y) / r a uniform direction
+// around n:
+//   cosine-weighted: (x, y) lifted straight up onto the hemisphere, cos(theta) = sqrt(1 - r^2)
+//     (Malley's method; Ray Tracing in One Weekend's normal + random_unit_vector draws the same
+//     density);
+//   uniform: cos(theta) = 1 - r^2, uniform in (0, 1] (Archimedes: equal heights cut equal areas
+//     from a sphere), so sin(theta) = r sqrt(2 - r^2), and the tangent part is (x, y) times
+//     sqrt(2 - r^2).
+static vec3 ScatterDirection(ScatterMethod method, vec3 n, vec2 disk) {
+    real x = disk.x, y = disk.y, r2 = x * x + y * y, cosTheta = std::sqrt(1 - r2);
+    if (method != SCATTER_COSINE) {
+        real stretch = std::sqrt(2 - r2);
+        x *= stretch, y *= stretch, cosTheta = 1 - r2;
+    }
     vec3 t, b;
     Basis(n, &t, &b);
-    return (sinTheta * std::cos(phi)) * t + (sinTheta * std::sin(phi)) * b + cosTheta * n;
+    return x * t + y * b + cosTheta * n;
 }
 
 // Veach's power heuristic (Veach, "Robust Monte Carlo Methods for Light Transport Simulation",
@@ -72,21 +111,22 @@ static real PowerHeuristic(real a, real b) {
 
 // ---- emitters: the shapes whose material has `emit` (PlanEffects lists them) ---------------
 
-// A point drawn uniformly over the emitter's surface, and the unit normal there. A sphere: the
-// height z uniform in [-1, 1] (Archimedes again). A triangle: barycentric coordinates from the
-// square root of u, which spreads the points evenly (Shirley & Chiu 1997; pbrt-v4 §A.5.4).
-static void SampleEmitter(const Scene *scene, const Emitter *e, real u, real v, vec3 *p, vec3 *n) {
-    if (e->shape == SHAPE_SPHERE) {
-        const Sphere *s = &scene->spheres[e->index];
-        real z = 1 - 2 * u, r = std::sqrt(std::max(real(0), 1 - z * z)), phi = 2 * kPi * v;
-        *n = {r * std::cos(phi), r * std::sin(phi), z};
-        *p = s->center + s->radius * *n;
-        return;
-    }
-    const Triangle *t = &scene->triangles[e->index];
-    real root = std::sqrt(u), b0 = 1 - root, b1 = v * root;
-    *p = b0 * t->a + b1 * t->b + (1 - b0 - b1) * t->c;
-    *n = e->normal;
+// A point drawn uniformly over an emitting sphere, and the unit normal there, from a uniform
+// point (x, y) of the unit disk: the height z = 1 - 2 r^2, uniform in (-1, 1] (Archimedes
+// again), and the rest of the unit normal (x, y) times 2 sqrt(1 - r^2), which makes its length
+// 1 (Marsaglia, "Choosing a Point from the Surface of a Sphere", 1972).
+static void SampleSphere(const Sphere *s, vec2 disk, vec3 *p, vec3 *n) {
+    real r2 = disk.x * disk.x + disk.y * disk.y, stretch = 2 * std::sqrt(1 - r2);
+    *n = {stretch * disk.x, stretch * disk.y, 1 - 2 * r2};
+    *p = s->center + s->radius * *n;
+}
+
+// A point drawn uniformly over an emitting triangle, from two uniform numbers (u, v):
+// barycentric coordinates from the square root of u, which spreads the points evenly (Shirley &
+// Chiu 1997; pbrt-v4 §A.5.4). Its normal is the emitter's.
+static vec3 SampleTriangle(const Triangle *t, vec2 uv) {
+    real root = std::sqrt(uv.x), b0 = 1 - root, b1 = uv.y * root;
+    return b0 * t->a + b1 * t->b + (1 - b0 - b1) * t->c;
 }
 
 // The density, per solid angle at the shaded point, with which next-event estimation picks a

@@ -205,6 +205,21 @@ static void TestConvergence() {
           "RMSE 64 -> 256 samples falls by about 2 (" + std::to_string(e64 / e256) + ")");
 }
 
+// Two estimates of the same light agree: the per-pixel differences average to 0 within 4
+// standard errors of their mean.
+static void CheckAgree(const std::vector<double> &base, const std::vector<double> &other,
+                       const std::string &name) {
+    double sum = 0, sum2 = 0, n = (double)base.size();
+    for (size_t p = 0; p < base.size(); p++) {
+        double d = other[p] - base[p];
+        sum += d, sum2 += d * d;
+    }
+    double mean = sum / n, error = std::sqrt((sum2 / n - mean * mean) / (n - 1));
+    CHECK(std::fabs(mean) <= 4 * error, name + " agrees with the reference estimate: mean " +
+                                            "difference " + std::to_string(mean) + " within 4 x " +
+                                            std::to_string(error));
+}
+
 // Every method estimates the same light: for each pair, the per-pixel differences average to 0
 // within 4 standard errors of their mean.
 static void TestMethodsAgree() {
@@ -224,16 +239,21 @@ static void TestMethodsAgree() {
                   : Light(&scene, 256, {SCATTER_COSINE, LIGHTS_NONE, false, 6}, SAMPLES_ADAPTIVE);
         if (k == 4)
             base = Light(&scene, 256, {SCATTER_COSINE, LIGHTS_NONE, false, 1});
-        double sum = 0, sum2 = 0, n = (double)base.size();
-        for (size_t p = 0; p < base.size(); p++) {
-            double d = other[p] - base[p];
-            sum += d, sum2 += d * d;
-        }
-        double mean = sum / n, error = std::sqrt((sum2 / n - mean * mean) / (n - 1));
-        CHECK(std::fabs(mean) <= 4 * error,
-              std::string(names[k]) + " agrees with the reference estimate: mean difference " +
-                  std::to_string(mean) + " within 4 x " + std::to_string(error));
+        CheckAgree(base, other, names[k]);
     }
+}
+
+// An emitting sphere, found by next-event estimation (points drawn on it by Marsaglia's method)
+// and by the scattered rays that hit it: with either alone, or both under MIS, the same light.
+static void TestSphereLampAgrees() {
+    Scene scene = SmallBox(10);
+    scene.lights.clear();
+    scene.spheres[0].material = 3; // the lamp's material: the sphere glows
+    std::vector<double> hits = Light(&scene, 256, {SCATTER_COSINE, LIGHTS_NONE, false, 1});
+    CheckAgree(hits, Light(&scene, 256, {SCATTER_COSINE, LIGHTS_NEE, false, 2}),
+               "a glowing sphere found by next-event estimation alone");
+    CheckAgree(hits, Light(&scene, 256, {SCATTER_UNIFORM, LIGHTS_MIS, false, 3}),
+               "a glowing sphere under MIS, uniform sampling");
 }
 
 // The same bytes on 1 and 2 threads; exact ray counts where they are predictable.
@@ -333,6 +353,7 @@ void TestPath() {
     TestInsideGlowingSphere();
     TestConvergence();
     TestMethodsAgree();
+    TestSphereLampAgrees();
     TestThreadsAndCounts();
     TestEmitterWithoutArea();
     TestPathProgram();
