@@ -86,8 +86,10 @@ static RT_INLINE unsigned LaneBits(LaneMask mask) {
 
 // The lanes whose triangles survive EdgesDisagree (watertight.cpp), as bits: the same edge
 // functions, U = Cx By - Cy Bx, V = Ax Cy - Ay Cx, W = Bx Ay - By Ax, and a triangle is out when
-// two of them have strictly opposite signs. *sure: the survivors whose three edge functions are
-// neither 0 nor NaN (a NaN compares false both ways), so that the ray passes inside for certain.
+// two of them have strictly opposite signs, that is, when one of the three is negative and one
+// positive (no number is both, and a NaN compares false both ways, as in the scalar test).
+// *sure: the survivors whose three edge functions are neither 0 nor NaN, so that the ray
+// passes inside for certain.
 template <int kz>
 static RT_INLINE unsigned Survivors(const TriangleBlock *b, const LaneRay *r, unsigned *sure) {
     Lanes ax, ay, bx, by, cx, cy, zero;
@@ -98,14 +100,13 @@ static RT_INLINE unsigned Survivors(const TriangleBlock *b, const LaneRay *r, un
     Lanes u = cx * by - cy * bx;
     Lanes v = ax * cy - ay * cx;
     Lanes w = bx * ay - by * ax;
-    LaneMask out = ((u < zero) & (v > zero)) | ((u > zero) & (v < zero)) |
-                   ((w < zero) & ((u > zero) | (v > zero))) |
-                   ((w > zero) & ((u < zero) | (v < zero)));
+    LaneMask uNeg = u < zero, vNeg = v < zero, wNeg = w < zero;
+    LaneMask uPos = u > zero, vPos = v > zero, wPos = w > zero;
+    LaneMask out = (uNeg | vNeg | wNeg) & (uPos | vPos | wPos);
     unsigned live = ~LaneBits(out) & ((1u << kLanes) - 1);
     if (live == 0) // most blocks
         return 0;
-    LaneMask certain =
-        ((u < zero) | (u > zero)) & ((v < zero) | (v > zero)) & ((w < zero) | (w > zero));
+    LaneMask certain = (uNeg | uPos) & (vNeg | vPos) & (wNeg | wPos);
     *sure = live & LaneBits(certain);
     return live;
 }
