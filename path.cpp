@@ -119,9 +119,17 @@ static bool Faces(const Scene *scene, const Emitter *e, const RayHit *hit, vec3 
     return inside || Dot(n, hit->point - p) > 0;
 }
 
+// How far past p (t = 1) EmitterVisible looks first. The ray meets e at t = 1 to within the
+// rounding of p's coordinates against its distance, far less than this unless e is some 2^-30
+// of its coordinates' size away.
+const real kPastEmitter = real(0x1p-20);
+
 // Whether nothing stands between the shaded hit and the point p of emitter e, which faces it:
 // the nearest hit toward p (t = 1) is then e itself, at p (the line meets a facing point of a
-// sphere, or a triangle, nowhere before it).
+// sphere, or a triangle, nowhere before it). The search looks only a little past p first: a
+// nearest hit found there is the nearest of all, and the shapes beyond (the ceiling behind a
+// lamp) are refused by the plane test's first bound instead of being taken as hits and then
+// replaced. Only where nothing is found there does it look on to infinity.
 static bool EmitterVisible(Path *path, const RayHit *hit, const Emitter *e, vec3 p) {
     const Methods *methods = &path->settings->methods;
     Ray shadow;
@@ -131,7 +139,9 @@ static bool EmitterVisible(Path *path, const RayHit *hit, const Emitter *e, vec3
     path->log->stats.shadow++;
     int node = Record(RAY_SHADOW, &shadow, path->log);
     RayHit blocker;
-    bool found = FindNearestHitFrom(path->scene, *methods, &shadow, &start, kInfinity, &blocker);
+    bool found =
+        FindNearestHitFrom(path->scene, *methods, &shadow, &start, 1 + kPastEmitter, &blocker) ||
+        FindNearestHitFrom(path->scene, *methods, &shadow, &start, kInfinity, &blocker);
     bool visible = found && blocker.shape == e->shape && blocker.index == e->index;
     if (node >= 0) {
         RayNode *n = &(*path->log->tree)[node];
