@@ -1,14 +1,15 @@
-// commit.cpp -- the committed scene: the triangles in the layout the fast loop reads.
+// commit.cpp -- the committed scene: the shapes in the layout the fast loop reads.
 //
 // A scene is written, read and explained as the handouts' structs. Once per render, CommitScene
-// (after Embree's rtcCommitScene) copies the triangles into blocks of kLanes, coordinate by
-// coordinate, for the kernel (kernel.cpp) to test a block at a time; and when the scene has
-// enough triangles that it pays (kBvhMinTriangles, measured), it builds a bounding volume
-// hierarchy over them: a binary tree, top down, each node split where build.cpp says (the surface
-// area heuristic over binned centroids: Wald, "On fast construction of SAH-based bounding volume
-// hierarchies", 2007; pbrt-v4 §7.3), then collapsed to four children a node. Large subtrees are
-// tasks that a second thread shares; each depends only on its triangles, so the tree is the same
-// whoever builds what. Nothing here changes an answer: the kernel returns the plain loop's bits.
+// (after Embree's rtcCommitScene) copies the triangles, and the spheres, into blocks of kLanes,
+// coordinate by coordinate, for the kernel (kernel.cpp) to test a block at a time; and when the
+// scene has enough triangles that it pays (kBvhMinTriangles, measured), it builds a bounding
+// volume hierarchy over them: a binary tree, top down, each node split where build.cpp says (the
+// surface area heuristic over binned centroids: Wald, "On fast construction of SAH-based bounding
+// volume hierarchies", 2007; pbrt-v4 §7.3), then collapsed to four children a node. Large
+// subtrees are tasks that a second thread shares; each depends only on its triangles, so the tree
+// is the same whoever builds what. Nothing here changes an answer: the kernel returns the plain
+// loop's bits.
 #include "ray.h"
 
 #include <algorithm>
@@ -340,6 +341,26 @@ static void BuildTree(const std::vector<Triangle> &triangles, SceneLayout *layou
     });
 }
 
+// The spheres, kLanes to a block in scene order, for the kernel's first sphere step. An empty
+// lane repeats the block's first sphere (finite numbers, so it computes nothing unusual) and is
+// left out of `filled`.
+static void SphereBlocks(const std::vector<Sphere> &spheres, SceneLayout *layout) {
+    int n = (int)spheres.size();
+    layout->sphereBlocks.resize(Blocks(n));
+    for (int first = 0; first < n; first += kLanes) {
+        SphereBlock *block = &layout->sphereBlocks[first / kLanes];
+        block->filled = 0;
+        for (int lane = 0; lane < kLanes; lane++) {
+            const Sphere *s = &spheres[first + lane < n ? first + lane : first];
+            for (int axis = 0; axis < 3; axis++)
+                block->center[axis][lane] = Component(s->center, axis);
+            block->r2[lane] = s->radius * s->radius; // (as LineMissesSphere rounds it)
+            block->filled |= (unsigned)(first + lane < n) << lane;
+        }
+    }
+    layout->sphereCount = spheres.size();
+}
+
 void CommitScene(Scene *scene, LayoutChoice choice) {
     SceneLayout layout;
     const std::vector<Triangle> &triangles = scene->triangles;
@@ -354,6 +375,7 @@ void CommitScene(Scene *scene, LayoutChoice choice) {
         AppendBlocks(triangles, index.data(), n, &layout);
         SetUpAll(triangles, &layout);
     }
+    SphereBlocks(scene->spheres, &layout);
     layout.triangleCount = triangles.size();
     layout.committed = true;
     layout.wide = KernelCanBeWide();

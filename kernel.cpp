@@ -1,4 +1,4 @@
-// kernel.cpp -- the fast triangle loop: blocks of kLanes triangles, and the BVH walk.
+// kernel.cpp -- the fast shape loop: blocks of kLanes triangles, the BVH walk, blocks of spheres.
 //
 // Speed machinery, behind the contract of HitWatertightTriangles (watertight.cpp): the same
 // hits, bit for bit, found faster. Two steps beyond the plain loop:
@@ -20,7 +20,9 @@
 // baseline (SSE2), and each call takes the one this processor can run (what target_clones does;
 // written out, because clang 14's target_clones cannot be called from another file).
 // The block test is in kernel_blocks.h, the walk in kernel_walk.h; this file puts them together
-// for one ray and dispatches.
+// for one ray and dispatches. The spheres' blocks (kernel_spheres.h) get the same treatment: the
+// first step of the stable sphere test on kLanes spheres at once, the reference test for the rest.
+#include "kernel_spheres.h"
 #include "kernel_walk.h"
 
 template <int kz, bool kWide>
@@ -74,6 +76,42 @@ bool HitCommittedTriangles(const Scene *scene, int skip, const Ray *ray, const R
         return HitAvx2(scene, skip, ray, shear, tMin, tMax, anyHit, hit);
 #endif
     return HitBaseline(scene, skip, ray, shear, tMin, tMax, anyHit, hit);
+}
+
+// The sphere blocks (kernel_spheres.h), one chunk or many, each in both copies. Out of line, so
+// that the search of one chunk, the common one, needs few registers saved.
+static RT_NOINLINE bool OneChunkBaseline(const Scene *scene, int skip, const Ray *ray, real tMin,
+                                         real *tMax, bool anyHit, RayHit *hit) {
+    return TestOneChunk<false>(scene, skip, ray, tMin, tMax, anyHit, hit);
+}
+
+static RT_NOINLINE bool ChunksBaseline(const Scene *scene, int skip, const Ray *ray, real tMin,
+                                       real *tMax, bool anyHit, RayHit *hit) {
+    return TestChunks<false>(scene, skip, ray, tMin, tMax, anyHit, hit);
+}
+
+#if RT_DISPATCH
+RT_AVX2 static RT_NOINLINE bool OneChunkAvx2(const Scene *scene, int skip, const Ray *ray,
+                                             real tMin, real *tMax, bool anyHit, RayHit *hit) {
+    return TestOneChunk<true>(scene, skip, ray, tMin, tMax, anyHit, hit);
+}
+
+RT_AVX2 static RT_NOINLINE bool ChunksAvx2(const Scene *scene, int skip, const Ray *ray, real tMin,
+                                           real *tMax, bool anyHit, RayHit *hit) {
+    return TestChunks<true>(scene, skip, ray, tMin, tMax, anyHit, hit);
+}
+#endif
+
+bool HitCommittedSpheres(const Scene *scene, int skip, const Ray *ray, real tMin, real *tMax,
+                         bool anyHit, RayHit *hit) {
+    bool one = scene->layout.sphereCount <= (size_t)(kChunkBlocks * kLanes);
+#if RT_DISPATCH
+    if (scene->layout.wide)
+        return one ? OneChunkAvx2(scene, skip, ray, tMin, tMax, anyHit, hit)
+                   : ChunksAvx2(scene, skip, ray, tMin, tMax, anyHit, hit);
+#endif
+    return one ? OneChunkBaseline(scene, skip, ray, tMin, tMax, anyHit, hit)
+               : ChunksBaseline(scene, skip, ray, tMin, tMax, anyHit, hit);
 }
 
 bool KernelCanBeWide() {

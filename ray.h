@@ -195,12 +195,13 @@ enum ShadingModel {
 };
 
 // Everything a render needs to know about the world. Shapes name materials by index.
-// ---- the committed scene: the triangles in the layout the fast loop reads (commit.cpp) -------
+// ---- the committed scene: the shapes in the layout the fast loop reads (commit.cpp) ----------
 
 // A scene is written as the handouts' structs; once per render CommitScene (like Embree's scene
-// commit) copies its triangles into blocks of kLanes, coordinate by coordinate, which the
-// kernel (kernel.cpp) tests kLanes at a time, and, for a scene large enough that it pays, builds
-// a bounding volume hierarchy over them. The answers are the very bits of the plain loop.
+// commit) copies its triangles and its spheres into blocks of kLanes, coordinate by coordinate,
+// which the kernel (kernel.cpp) tests kLanes at a time, and, for a scene large enough that it
+// pays, builds a bounding volume hierarchy over the triangles. The answers are the very bits of
+// the plain loop.
 const int kLanes = 32 / (int)sizeof(real); // 4 doubles or 8 floats: one 256-bit vector
 
 // An axis-aligned box, and its largest |coordinate| (TriangleBox, SlabInterval).
@@ -232,6 +233,16 @@ struct TriangleBlock {
     int index[kLanes];                  // each lane's place in scene->triangles; -1: empty
 };
 
+// kLanes spheres, coordinate by coordinate, for the kernel's first sphere step (LineMissesSphere,
+// geometry.cpp): each centre, and r^2 rounded as that step rounds radius * radius. Block k holds
+// the spheres at places k kLanes + lane; `filled` has a bit for each lane that holds one, so an
+// empty lane never passes, whatever its numbers.
+struct SphereBlock {
+    alignas(32) real center[3][kLanes]; // x, y, z, lane by lane
+    real r2[kLanes];                    // radius * radius
+    unsigned filled;                    // bit `lane` set: the lane holds a sphere
+};
+
 // A node of the BVH, four children wide (Embree's BVH4): its children's boxes, as TriangleBox
 // makes them and coordinate by coordinate, so the kernel tests all four at once (SlabInterval
 // widens them). A child is another node, a leaf (a run of blocks), or missing.
@@ -250,14 +261,17 @@ struct SceneLayout {
     std::vector<TriangleBlock> blocks; // in scene order, or in BVH leaf order
     std::vector<BvhNode> nodes;        // empty: no BVH, the blocks are one list
     std::vector<TriangleSetUp> setUps; // each triangle's box and plane, by its place in the scene
-    size_t triangleCount = 0;          // the number of triangles it was built from
+    std::vector<SphereBlock> sphereBlocks; // the spheres in scene order, kLanes a block
+    size_t triangleCount = 0;              // the number of triangles it was built from
+    size_t sphereCount = 0;                // the number of spheres it was built from
     bool committed = false;
     bool wide = false; // the kernel tests blocks in AVX2 vectors (else lane by lane: kernel.cpp)
     // A copy of a Scene may then be edited, so it starts uncommitted.
     SceneLayout() = default;
     SceneLayout(const SceneLayout &) {}
     SceneLayout &operator=(const SceneLayout &) {
-        blocks.clear(), nodes.clear(), setUps.clear(), triangleCount = 0, committed = false;
+        blocks.clear(), nodes.clear(), setUps.clear(), sphereBlocks.clear();
+        triangleCount = 0, sphereCount = 0, committed = false;
         wide = false;
         return *this;
     }
@@ -725,14 +739,25 @@ real EmitterArea(const Scene *scene, const Emitter *e);
 
 // ---- commit.cpp and kernel.cpp: the committed scene ------------------------------------------
 
-// Builds scene->layout from the scene's triangles (see SceneLayout): once per render, after the
-// scene is complete. The shape loop answers the same with or without it, only faster.
+// Builds scene->layout from the scene's triangles and spheres (see SceneLayout): once per render,
+// after the scene is complete. The shape loop answers the same with or without it, only faster.
 void CommitScene(Scene *scene, LayoutChoice choice);
 
 // True while scene->layout was built from the triangles the scene holds.
 inline bool LayoutIsCurrent(const Scene *scene) {
     return scene->layout.committed && scene->layout.triangleCount == scene->triangles.size();
 }
+
+// True while scene->layout's sphere blocks were built from the spheres the scene holds.
+inline bool SpheresAreCurrent(const Scene *scene) {
+    return scene->layout.committed && scene->layout.sphereCount == scene->spheres.size();
+}
+
+// The stable sphere test (HitSphere, geometry.cpp) over the committed sphere blocks, in scene
+// order, skipping sphere `skip`: the same hits, to the bit. Each hit lowers *tMax to its t; with
+// anyHit the first one ends the search. True if any sphere was hit.
+bool HitCommittedSpheres(const Scene *scene, int skip, const Ray *ray, real tMin, real *tMax,
+                         bool anyHit, RayHit *hit);
 
 // HitWatertightTriangles over the committed layout: the same hit, to the bit.
 bool HitCommittedTriangles(const Scene *scene, int skip, const Ray *ray, const RayShear *shear,

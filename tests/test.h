@@ -78,6 +78,7 @@ void TestRanges();
 void TestFiles();
 void TestMethods();
 void TestLayout();
+void TestSpheres();
 void TestPath();
 void TestMesh();
 void TestMeshRays();

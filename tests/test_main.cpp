@@ -88,6 +88,7 @@ int main() {
     TestFiles();
     TestMethods();
     TestLayout();
+    TestSpheres();
     TestPath();
     TestSceneFiles();
     TestMesh();

@@ -1,0 +1,202 @@
+// tests/test_spheres.cpp -- the committed sphere blocks answer exactly what the plain loop answers.
+//
+// The kernel's sphere half (kernel_spheres.h) runs the first step of the stable sphere test on
+// kLanes spheres at once and sends the spheres that pass it to IntersectSphere in scene order.
+// It promises the plain loop's very bits: the same nearest sphere, t, point, normal and error
+// bound, ties to the earlier sphere, the same any-hit answer and the same skip. Each check asks
+// the same question of the scene as written and committed, and of the kernel's two copies
+// directly (AVX2 vectors, where this processor has them, and lane by lane), and compares every
+// field of the answers.
+#include "robust_scenes.h"
+#include "test.h"
+
+#include <cstdio>
+
+static const bool kDouble = sizeof(real) == sizeof(double);
+
+// Every field of two hit records, bit for bit (the struct has padding, so not memcmp).
+static bool SameBits(real a, real b) { return memcmp(&a, &b, sizeof a) == 0; }
+static bool SameBits(vec3 a, vec3 b) {
+    return SameBits(a.x, b.x) && SameBits(a.y, b.y) && SameBits(a.z, b.z);
+}
+static bool SameHit(const RayHit &a, const RayHit &b) {
+    return SameBits(a.t, b.t) && SameBits(a.point, b.point) && SameBits(a.normal, b.normal) &&
+           a.frontFace == b.frontFace && a.material == b.material && a.shape == b.shape &&
+           a.index == b.index && SameBits(a.pointError, b.pointError);
+}
+
+static vec3 RandomUnit(TestRng *rng) {
+    for (;;) {
+        vec3 v = {2 * Uniform(rng) - 1, 2 * Uniform(rng) - 1, 2 * Uniform(rng) - 1};
+        if (Dot(v, v) > real(0.01) && Dot(v, v) <= 1)
+            return Normalize(v);
+    }
+}
+
+// The scene as written and committed, in one pair.
+struct SpherePair {
+    Scene plain, committed;
+};
+
+// One question asked of the plain scene and the committed one (nearest and any hit), and, when
+// the direction needs no rescaling (HitShapes then passes the ray on as it is), of each copy of
+// the kernel directly. False at the first answer that differs.
+static bool SameSphereAnswers(SpherePair *p, const Ray *ray, const RayStart *start) {
+    RayHit a, b;
+    bool foundA = FindNearestHitFrom(&p->plain, kRobustMethods, ray, start, kInfinity, &a);
+    bool foundB = FindNearestHitFrom(&p->committed, kRobustMethods, ray, start, kInfinity, &b);
+    if (foundA != foundB || (foundA && !SameHit(a, b)))
+        return false;
+    if (AnyHitFrom(&p->plain, kRobustMethods, ray, start, kInfinity) !=
+        AnyHitFrom(&p->committed, kRobustMethods, ray, start, kInfinity))
+        return false;
+    if (!WithinWindow(MaxComponent(ray->dir), kDirectionWindow))
+        return true;
+    int skip = start->shape == SHAPE_SPHERE ? start->index : -1;
+    Scene *scene = &p->committed;
+    bool wideBefore = scene->layout.wide, same = true;
+    for (int wide = 0; wide <= (int)KernelCanBeWide(); wide++) {
+        scene->layout.wide = wide;
+        for (int anyHit = 0; anyHit < 2; anyHit++) {
+            RayHit c;
+            real tMax = kInfinity;
+            bool found = HitCommittedSpheres(scene, skip, ray, start->tMin, &tMax, anyHit, &c);
+            bool plainAny = AnyHitFrom(&p->plain, kRobustMethods, ray, start, kInfinity);
+            same = same && found == (anyHit ? plainAny : foundA) &&
+                   (!found || anyHit || (SameHit(a, c) && SameBits(tMax, a.t)));
+        }
+    }
+    scene->layout.wide = wideBefore;
+    return same;
+}
+
+// n spheres around the origin at `scale`: centres in [-scale, scale]^3, radii from a thousandth
+// of the scale to the scale, some of them copies (ties) and one of radius 0.
+static Scene SpheresAt(int n, real scale, TestRng *rng) {
+    Scene scene = WallScene();
+    for (int i = 0; i < n; i++) {
+        vec3 c = scale * vec3{2 * Uniform(rng) - 1, 2 * Uniform(rng) - 1, 2 * Uniform(rng) - 1};
+        real r = scale * real(std::pow(10.0, -3 * (double)Uniform(rng)));
+        scene.spheres.push_back({c, r, 0});
+        if (i >= 2 && Uniform(rng) < real(0.15))
+            scene.spheres.back() = scene.spheres[i / 2]; // a copy of an earlier sphere: a tie
+    }
+    if (n >= 5)
+        scene.spheres[n - 2].radius = 0;
+    return scene;
+}
+
+// Rays of every kind at one scene: random, grazing a sphere, from inside one, from a point
+// rounded onto one's surface, leaving one (skip), with directions far outside the window. The
+// number of questions whose answers differ.
+static int SphereDifferences(const Scene &scene, real scale, int rays, TestRng *rng) {
+    SpherePair p;
+    p.plain = scene, p.committed = scene; // (copies: uncommitted)
+    CommitScene(&p.committed, LAYOUT_AUTO);
+    int differ = 0, n = (int)scene.spheres.size();
+    for (int i = 0; i < rays; i++) {
+        const Sphere &s = scene.spheres[i % n];
+        vec3 u = RandomUnit(rng), w = RandomUnit(rng);
+        vec3 side = SafeNormalize(Cross(u, w)); // perpendicular to u
+        Ray ray;
+        switch (i % 5) {
+        case 0: // anywhere to anywhere
+            ray = {2 * scale * RandomUnit(rng), RandomUnit(rng)};
+            break;
+        case 1: // grazing: along `side` through the point s.center + r u
+            ray = {s.center + s.radius * u - 3 * scale * side, side};
+            break;
+        case 2: // from inside
+            ray = {s.center + (s.radius / 2) * u, w};
+            break;
+        case 3: // from the surface, rounded
+            ray = {s.center + s.radius * u, w};
+            break;
+        default: // toward the centre from afar
+            ray = {s.center + 3 * scale * u, -u};
+        }
+        if (i % 7 == 0) // a direction that HitShapes rescales
+            ray.dir =
+                (i % 2 ? PowerOfTwo(2 * kDirectionWindow) : 1 / PowerOfTwo(2 * kDirectionWindow)) *
+                ray.dir;
+        RayStart start = kFromTheEye;
+        differ += !SameSphereAnswers(&p, &ray, &start);
+        start.shape = SHAPE_SPHERE, start.index = i % n; // leaving that sphere
+        differ += !SameSphereAnswers(&p, &ray, &start);
+        start = kFromTheEye, start.tMin = s.radius / 4; // a later start
+        differ += !SameSphereAnswers(&p, &ray, &start);
+    }
+    return differ;
+}
+
+// Scenes of 1 to 9 spheres (blocks partly filled), and of 70 and 150 (more than one chunk of
+// blocks), at scales from the smallest numbers to the largest.
+static void TestSameSphereHits() {
+    // (1e-156 and 1e-20: many squares of radii fall below the normal numbers, where the first
+    // step is not trusted)
+    const double scales[] = {1e-300, 1e-156, 1e-20, 1, 1e20, 1e150, 1e300};
+    const double floatScales[] = {1e-30, 1e-20, 1e-5, 1, 1e5, 1e15, 1e30};
+    TestRng rng = {2024};
+    for (int k = 0; k < 7; k++) {
+        real scale = real(kDouble ? scales[k] : floatScales[k]);
+        int differ = 0;
+        for (int n = 1; n <= 9; n++)
+            differ += SphereDifferences(SpheresAt(n, scale, &rng), scale, 100, &rng);
+        char what[120];
+        snprintf(what, sizeof what, "1 to 9 spheres at scale %g: the same bits committed",
+                 (double)scale);
+        CHECK(differ == 0, what);
+        differ = SphereDifferences(SpheresAt(70, scale, &rng), scale, 200, &rng) +
+                 SphereDifferences(SpheresAt(150, scale, &rng), scale, 300, &rng);
+        snprintf(what, sizeof what, "70 and 150 spheres at scale %g: the same bits committed",
+                 (double)scale);
+        CHECK(differ == 0, what);
+    }
+}
+
+// Ties: copies of one sphere at places 1, 4 and 6, behind it a larger one; the first copy wins,
+// committed or not, and leaving it, the next copy.
+static void TestSphereTies() {
+    Scene scene = WallScene();
+    Sphere s = {{0, 0, -5}, 1, 0}, big = {{0, 0, -9}, 3, 0};
+    scene.spheres = {big, s, big, big, s, big, s};
+    SpherePair p;
+    p.plain = scene, p.committed = scene;
+    CommitScene(&p.committed, LAYOUT_AUTO);
+    Ray ray = {{0, 0, 0}, {0, 0, -1}};
+    RayStart start = kFromTheEye;
+    RayHit hit;
+    CHECK(FindNearestHitFrom(&p.committed, kRobustMethods, &ray, &start, kInfinity, &hit) &&
+              hit.index == 1 && hit.t == 4,
+          "three copies of a sphere, committed: the first, place 1, at t = 4");
+    start.shape = SHAPE_SPHERE, start.index = 1;
+    CHECK(FindNearestHitFrom(&p.committed, kRobustMethods, &ray, &start, kInfinity, &hit) &&
+              hit.index == 4,
+          "leaving place 1 (skip): the next copy, place 4");
+    CHECK(SameSphereAnswers(&p, &ray, &start), "the same bits, committed or not");
+}
+
+// A scene edited after its commit is answered as written: the committed blocks no longer hold
+// its spheres, so the plain loop runs. And the handout's textbook sphere keeps the plain loop.
+static void TestEditedSpheresAreNotStale() {
+    Scene scene = WallScene();
+    scene.spheres.push_back({{0, 0, -9}, 1, 0});
+    CommitScene(&scene, LAYOUT_AUTO);
+    scene.spheres.push_back({{0, 0, -5}, 1, 0});
+    Ray ray = {{0, 0, 0}, {0, 0, -1}};
+    RayHit hit;
+    CHECK(FindNearestHit(&scene, kRobustMethods, &ray, 0, kInfinity, &hit) && hit.index == 1 &&
+              hit.t == 4,
+          "a sphere added after the commit, 4 in front of the eye, is hit at t = 4");
+    CommitScene(&scene, LAYOUT_AUTO);
+    RayHit textbook;
+    bool found = FindNearestHit(&scene, kHandoutMethods, &ray, 0, kInfinity, &textbook);
+    CHECK(found && textbook.index == 1 && textbook.t == 4,
+          "committed, the handout's textbook sphere gives its own answer: t = 4");
+}
+
+void TestSpheres() {
+    TestSameSphereHits();
+    TestSphereTies();
+    TestEditedSpheresAreNotStale();
+}
