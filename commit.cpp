@@ -210,8 +210,10 @@ static int FourKids(Builder *b, NodeRef top, NodeRef kids[kWidth]) {
     return count;
 }
 
-// The four-wide subtree over binary node `top`'s, depth-first. Returns the top node's place.
-static int Collapse(Builder *b, NodeRef top, SceneLayout *layout) {
+// The four-wide subtree over binary node `top`'s, depth-first, its leaves' blocks numbered from
+// `*next` on: the order NumberLeaves numbers them in, as each node's kids keep the binary
+// tree's order (FourKids), so Collapse needs no numbers from it. Returns the top node's place.
+static int Collapse(Builder *b, NodeRef top, int *next, SceneLayout *layout) {
     NodeRef kids[kWidth];
     int count = FourKids(b, top, kids);
     int place = (int)layout->nodes.size();
@@ -226,7 +228,10 @@ static int Collapse(Builder *b, NodeRef top, SceneLayout *layout) {
             node.lo[axis][k] = kid->box.lo[axis], node.hi[axis][k] = kid->box.hi[axis];
         node.size[k] = kid->box.size;
         node.blocks[k] = Blocks(kid->count);
-        node.child[k] = kid->count > 0 ? kid->block : Collapse(b, kids[k], layout);
+        if (kid->count > 0)
+            node.child[k] = *next, *next += Blocks(kid->count);
+        else
+            node.child[k] = Collapse(b, kids[k], next, layout);
     }
     layout->nodes[place] = node;
     return place;
@@ -298,9 +303,43 @@ static void RunBoth(bool threads, const First &first, const Second &second) {
     helper.join();
 }
 
-static void BuildTree(const std::vector<Triangle> &triangles, SceneLayout *layout) {
+// Once the tree is built: the leaves' blocks numbered and filled, and the four-wide tree.
+static void NumberAndCollapse(Builder *b, const std::vector<Triangle> &triangles, bool threads,
+                              SceneLayout *layout) {
+    // One thread numbers the leaves and then fills their blocks, a share of leaves at a time,
+    // while the other collapses the tree and then helps to fill them. (Run one after the other,
+    // the leaves are ready before the collapse starts.)
+    std::vector<NodeRef> leaves;
+    std::atomic<bool> ready(false); // the leaves listed and the blocks sized
+    std::atomic<size_t> next(0);
+    auto fill = [&] {
+        for (size_t first; (first = next.fetch_add(kLeafShare)) < leaves.size();)
+            FillLeaves(b, triangles, leaves, first, std::min(first + kLeafShare, leaves.size()),
+                       layout->blocks.data());
+    };
+    auto number = [&] {
+        int blocks = 0;
+        NumberLeaves(b, {0, 0}, &blocks, &leaves);
+        layout->blocks.resize(blocks); // (the items are no longer needed)
+        ready.store(true, std::memory_order_release);
+        fill();
+    };
+    size_t binary = 0; // the binary tree's nodes, of which (binary + 1) / 2 are leaves
+    for (const std::vector<BinaryNode> &part : b->parts)
+        binary += part.size();
+    RunBoth(threads, number, [&] {
+        layout->nodes.reserve((binary + 1) / 2); // at most a node per inner binary node
+        int blocks = 0;
+        Collapse(b, {0, 0}, &blocks, layout);
+        while (!ready.load(std::memory_order_acquire))
+            std::this_thread::yield();
+        fill();
+    });
+}
+
+static void BuildTree(const std::vector<Triangle> &triangles, int most, SceneLayout *layout) {
     int n = (int)triangles.size();
-    bool threads = n >= kThreadMin && std::thread::hardware_concurrency() > 1;
+    bool threads = most > 1 && n >= kThreadMin && std::thread::hardware_concurrency() > 1;
     bool wide = KernelCanBeWide();
     Task root = {0, n, 0, {}};
     std::unique_ptr<int[]> order(new int[n]);
@@ -322,23 +361,7 @@ static void BuildTree(const std::vector<Triangle> &triangles, SceneLayout *layou
             SetUpAll(triangles, layout);
             BuildTasks(&b);
         });
-    std::vector<NodeRef> leaves;
-    int blocks = 0;
-    NumberLeaves(&b, {0, 0}, &blocks, &leaves);
-    layout->blocks.resize(blocks); // (the items are no longer needed)
-    // One thread fills the blocks, a share of leaves at a time, while the other collapses the
-    // tree; then both fill them
-    std::atomic<size_t> next(0);
-    auto fill = [&] {
-        for (size_t first; (first = next.fetch_add(kLeafShare)) < leaves.size();)
-            FillLeaves(&b, triangles, leaves, first, std::min(first + kLeafShare, leaves.size()),
-                       layout->blocks.data());
-    };
-    RunBoth(threads, fill, [&] {
-        layout->nodes.reserve(leaves.size()); // at most a node per inner binary node
-        Collapse(&b, {0, 0}, layout);
-        fill();
-    });
+    NumberAndCollapse(&b, triangles, threads, layout);
 }
 
 // The spheres, kLanes to a block in scene order, for the kernel's first sphere step. An empty
@@ -361,13 +384,13 @@ static void SphereBlocks(const std::vector<Sphere> &spheres, SceneLayout *layout
     layout->sphereCount = spheres.size();
 }
 
-void CommitScene(Scene *scene, LayoutChoice choice) {
+void CommitScene(Scene *scene, LayoutChoice choice, int threads) {
     SceneLayout layout;
     const std::vector<Triangle> &triangles = scene->triangles;
     int n = (int)triangles.size();
     bool tree = choice == LAYOUT_BVH || (choice == LAYOUT_AUTO && (size_t)n >= kBvhMinTriangles);
     if (tree && n > 0) {
-        BuildTree(triangles, &layout);
+        BuildTree(triangles, threads, &layout);
     } else {
         std::vector<int> index(n);
         for (int i = 0; i < n; i++)

@@ -741,7 +741,9 @@ real EmitterArea(const Scene *scene, const Emitter *e);
 
 // Builds scene->layout from the scene's triangles and spheres (see SceneLayout): once per render,
 // after the scene is complete. The shape loop answers the same with or without it, only faster.
-void CommitScene(Scene *scene, LayoutChoice choice);
+// The BVH is built by up to `threads` threads (two at most, one on a single core), and is the
+// same bits however many build it.
+void CommitScene(Scene *scene, LayoutChoice choice, int threads = 2);
 
 // True while scene->layout was built from the triangles the scene holds.
 inline bool LayoutIsCurrent(const Scene *scene) {
