@@ -39,6 +39,7 @@ bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tM
     SetFaceNormal(ray, SafeNormalize(normal), hit);
     hit->material = s->material;
     hit->shape = SHAPE_SPHERE;
+    hit->awayShare = 0; // never passed over
     return true;
 }
 
@@ -59,6 +60,7 @@ static bool SetHandoutTriangleHit(const Triangle *tri, const Ray *ray, real t, R
     SetFaceNormal(ray, unit, hit);
     hit->material = tri->material;
     hit->shape = SHAPE_TRIANGLE;
+    hit->awayShare = 0; // never passed over: a handout method's hit has no such bound
     return true;
 }
 

@@ -44,8 +44,6 @@ struct Path {
     real scatterPdf; // the density the last diffuse bounce drew the ray with; 0: not diffuse
     bool departs;    // the rays from this diffuse hit start at `departure` (Depart)
     vec3 departure;
-    int leaves;     // the triangle they may pass over when they go plainly away from it; -1: none
-    real awayShare; // how plainly (Start)
 };
 
 // RecordRay for a path's rays, with no call where no tree is being drawn (every pixel but the
@@ -63,37 +61,16 @@ static real Random(const Path *path, Decision d) {
 // side whatever the direction (OffsetRayOrigin): one point, moved once a vertex. Under the other
 // methods LeaveSurface and ShadowRay decide for each ray.
 static void Depart(Path *path, const RayHit *hit) {
-    const Methods *methods = &path->settings->methods;
-    path->departs = methods->selfHit == SELF_HIT_BOUND;
+    path->departs = path->settings->methods.selfHit == SELF_HIT_BOUND;
     if (path->departs)
         path->departure = OffsetRayOrigin(hit, hit->normal);
-    const Scene *scene = path->scene;
-    path->leaves = -1;
-    if (!path->departs || methods->triangle != TRIANGLE_WATERTIGHT ||
-        hit->shape != SHAPE_TRIANGLE || !LayoutIsCurrent(scene))
-        return;
-    const TriangleSetUp *u = &scene->layout.setUps[hit->index];
-    if (!u->normalKnown)
-        return;
-    dvec3 n = u->n, e = u->nError;
-    double tilt = (e.x + e.y + e.z) / std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
-    path->leaves = hit->index;
-    path->awayShare = (real)(4 * tilt) + 16 * kUnitRoundoff;
 }
 
-// Where a ray from the departure point starts its search. Going away from the exact plane of
-// the triangle it leaves, it can never meet it: the departure point is on the side the normal
-// faces, or on the plane (OffsetRayOrigin's bound, which holds while the normal is known to
-// 2^-10: normalKnown), so that plane is at t <= 0, which RobustPlaneHit's sound bound refuses.
-// The triangle is then passed over, as under --self-hit skip: no answer changes. Going away is
-// certain where the rounded n.d exceeds awayShare of sum |d_i|: the unit normal leans from the
-// exact one by at most 2 |n - n*| / |n| <= 2 sum nError_i / max |n_i|, taken twice over, and
-// 16 u covers the rounding of n.d (gamma(3) of the same sum) and of the unit normal.
-static RayStart Start(const Path *path, const RayHit *hit, vec3 dir) {
-    bool away = path->leaves >= 0 &&
-                Dot(dir, hit->normal) >
-                    path->awayShare * (std::fabs(dir.x) + std::fabs(dir.y) + std::fabs(dir.z));
-    return away ? RayStart{0, SHAPE_TRIANGLE, path->leaves} : kFromTheEye;
+// Where a ray from the departure point starts its search: passing over the triangle it leaves
+// where it goes plainly away from it, as LeaveSurface's rays do (PassesOver).
+static RayStart Start(const RayHit *hit, vec3 dir) {
+    return PassesOver(hit, hit->normal, dir) ? RayStart{0, SHAPE_TRIANGLE, hit->index}
+                                             : kFromTheEye;
 }
 
 // ShadowRay from the hit to `target`, from the departure point when there is one.
@@ -102,7 +79,7 @@ static bool CastShadow(const Path *path, const RayHit *hit, vec3 target, Ray *ra
     if (!path->departs)
         return ShadowRay(hit, target, &path->settings->methods, ray, start);
     *ray = {path->departure, target - path->departure};
-    *start = Start(path, hit, ray->dir);
+    *start = Start(hit, ray->dir);
     return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
 }
 
@@ -292,7 +269,7 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     if (!path->departs)
         LeaveSurface(hit, dir, &path->settings->methods, &path->ray, &path->start);
     else
-        path->ray = {path->departure, dir}, path->start = Start(path, hit, dir);
+        path->ray = {path->departure, dir}, path->start = Start(hit, dir);
     return true;
 }
 
@@ -329,8 +306,8 @@ static void FinishTree(const Path *path, const std::vector<PathNode> &nodes) {
 color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, int i,
                 int j, int s, TraceLog *log) {
     PathSample sample = PathKey(settings->path.seed, i, j, s);
-    Path path = {scene,       settings,    log, sample, 0,         {0, 0, 0}, {1, 1, 1}, *primary,
-                 kFromTheEye, RAY_PRIMARY, 0,   false,  {0, 0, 0}, -1,        0};
+    Path path = {scene,    settings,    log,         sample, 0,     {0, 0, 0}, {1, 1, 1},
+                 *primary, kFromTheEye, RAY_PRIMARY, 0,      false, {0, 0, 0}};
     std::vector<PathNode> nodes;
     int parent = log->current;
     for (int number = 1; number <= settings->depth; number++, path.bounce++) {

@@ -184,13 +184,16 @@ void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp) {
     dvec3 nTerms = {std::fabs(yz) + std::fabs(zy), std::fabs(zx) + std::fabs(xz),
                     std::fabs(xy) + std::fabs(yx)};
     dvec3 e = setUp->nError = Scale(GammaD(5), nTerms);
-    setUp->normalKnown =
-        std::max({e.x, e.y, e.z}) <=
-        kFirstOrderShare * std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
+    double largest = std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
+    setUp->normalKnown = std::max({e.x, e.y, e.z}) <= kFirstOrderShare * largest;
+    // How plainly a ray must go away from the triangle to pass over it (PassesOver, geometry.cpp):
+    // the unit normal leans from the exact one by at most 2 |n - n*| / |n| <= 2 sum nError_i /
+    // max |n_i|, taken twice over, and 16 u covers the rounding of n.d and of the unit normal.
+    setUp->awayShare =
+        setUp->normalKnown ? (real)(4 * ((e.x + e.y + e.z) / largest)) + 16 * kUnitRoundoff : 0;
 
     // The unit normal, for shading. A sliver's n may be so small that n.n underflows: then it is
     // scaled by a power of two first, which changes no bit of n / |n|.
-    double largest = std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
     setUp->hasArea = largest > 0 && std::isfinite(largest);
     if (setUp->hasArea && !(largest >= 0x1p-500 && largest <= 0x1p500))
         n = Scale(std::ldexp(1.0, -std::ilogb(largest)), n);
@@ -366,5 +369,6 @@ bool RobustPlaneHit(const Triangle *tri, const TriangleSetUp *setUp, const Ray *
     hit->pointError = Gamma(2) * (Abs(hit->point) + Abs(along)) + tError * Abs(ray->dir);
     hit->material = tri->material;
     hit->shape = SHAPE_TRIANGLE;
+    hit->awayShare = setUp->awayShare;
     return true;
 }

@@ -154,6 +154,8 @@ struct RayHit {
     ShapeKind shape; // which array the shape is in
     int index;       // index of the shape in that array
     vec3 pointError; // |point - exact hit point| <= pointError, per axis
+    real awayShare;  // a triangle's (watertight method): how plainly a ray must leave it to pass
+                     // over it (PassesOver); 0: it never does
 };
 
 struct Sphere {
@@ -226,6 +228,7 @@ struct TriangleSetUp {
     bool normalKnown; // nError small against n: the first half of FirstOrderHolds (plane.cpp)
     vec3 normal;      // n / |n|, for shading
     bool hasArea;     // n is neither 0 nor beyond the range of numbers
+    real awayShare;   // for RayHit::awayShare: > 0 where normalKnown, else 0
 };
 
 struct TriangleBlock {
@@ -689,9 +692,15 @@ bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RaySt
 // its own error bound, to the side dir goes, so the new ray cannot hit the surface it leaves.
 vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir);
 
+// Whether a ray in direction dir from a point that OffsetRayOrigin moved off triangle hit, to the
+// side `side` points to, goes so plainly away from it that the shape loop may pass over it: it
+// cannot meet that triangle anyway (geometry.cpp has the reasoning).
+bool PassesOver(const RayHit *hit, vec3 side, vec3 dir);
+
 // The ray that leaves a hit in direction dir, and what it must not hit, by the self-hit method:
-// bound, from OffsetRayOrigin; epsilon, from the hit point, ignoring hits closer than
-// methods->epsilon; skip, from the hit point, ignoring the shape it leaves.
+// bound, from OffsetRayOrigin, passing over the triangle it leaves where PassesOver; epsilon,
+// from the hit point, ignoring hits closer than methods->epsilon; skip, from the hit point,
+// ignoring the shape it leaves.
 void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray, RayStart *start);
 
 // The shadow ray from a hit to a light at lightPosition, leaving the surface as LeaveSurface
