@@ -279,20 +279,6 @@ bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RaySt
     return HitShapes(scene, methods, ray, start, tMax, true, &scratch);
 }
 
-// The pass-over. OffsetRayOrigin puts the moved origin on the side of the exact plane that `side`
-// points to, or on the plane (its bound holds while the normal is known to 2^-10: normalKnown).
-// A ray going away from the plane on that side can then meet it only at t <= 0, which
-// RobustPlaneHit's sound bound refuses; passing over the triangle, as --self-hit skip does,
-// changes no answer and saves that refusal, about 200 instructions. Going away is certain where
-// the rounded n.d, on that side, exceeds awayShare of sum |d_i| (SetUpTriangle says why). A
-// sphere is never passed over: a ray leaving it inward meets it again.
-bool PassesOver(const RayHit *hit, vec3 side, vec3 dir) {
-    if (!(hit->shape == SHAPE_TRIANGLE && hit->awayShare > 0))
-        return false;
-    real away = Dot(side, hit->normal) < 0 ? -Dot(dir, hit->normal) : Dot(dir, hit->normal);
-    return away > hit->awayShare * (std::fabs(dir.x) + std::fabs(dir.y) + std::fabs(dir.z));
-}
-
 void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray, RayStart *start) {
     *start = kFromTheEye;
     ray->dir = dir;
