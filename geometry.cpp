@@ -297,17 +297,22 @@ void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray,
 
 // The shadow ray: leaves the surface as LeaveSurface says, toward the light, with dir = light -
 // origin, so t = 1 is the light itself and the open interval (tMin, 1) holds every possible
-// blocker, however far away the light is.
+// blocker, however far away the light is. Under the bound, the origin moves to the light's side
+// and the pass-over is judged for the final direction.
 bool ShadowRay(const RayHit *hit, vec3 lightPosition, const Methods *methods, Ray *ray,
                RayStart *start) {
-    vec3 side = lightPosition - hit->point; // (the side LeaveSurface moves the origin to)
-    LeaveSurface(hit, side, methods, ray, start);
-    ray->dir = lightPosition - ray->origin;
-    if (methods->selfHit == SELF_HIT_BOUND)
+    vec3 side = lightPosition - hit->point;
+    if (methods->selfHit == SELF_HIT_BOUND) {
+        ray->origin = OffsetRayOrigin(hit, side);
+        ray->dir = lightPosition - ray->origin;
         *start =
             PassesOver(hit, side, ray->dir) ? RayStart{0, SHAPE_TRIANGLE, hit->index} : kFromTheEye;
-    if (methods->selfHit == SELF_HIT_EPSILON)
-        start->tMin = methods->epsilon / SafeLength(ray->dir);
+    } else {
+        LeaveSurface(hit, side, methods, ray, start);
+        ray->dir = lightPosition - ray->origin;
+        if (methods->selfHit == SELF_HIT_EPSILON)
+            start->tMin = methods->epsilon / SafeLength(ray->dir);
+    }
     return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
 }
 
