@@ -57,9 +57,9 @@ static RT_INLINE void ShearLanes(const TriangleBlock *b, int corner, const LaneR
 typedef int MaskInts __attribute__((vector_size(sizeof(Lanes)))); // a LaneMask as ints
 typedef int FourInts __attribute__((vector_size(16)));
 typedef char SixteenBytes __attribute__((vector_size(16)));
-static RT_INLINE unsigned LaneBits(LaneMask mask) {
+static RT_INLINE unsigned LaneBits(const LaneMask *mask) {
     MaskInts ints;
-    memcpy(&ints, &mask, sizeof ints);
+    memcpy(&ints, mask, sizeof ints);
 #ifdef RT_FLOAT // eight lanes of one int: each half of the ints to bytes, then the halves joined
     typedef char FourBytes __attribute__((vector_size(4)));
     FourInts low = __builtin_shufflevector(ints, ints, 0, 1, 2, 3);
@@ -103,11 +103,11 @@ static RT_INLINE unsigned Survivors(const TriangleBlock *b, const LaneRay *r, un
     LaneMask uNeg = u < zero, vNeg = v < zero, wNeg = w < zero;
     LaneMask uPos = u > zero, vPos = v > zero, wPos = w > zero;
     LaneMask out = (uNeg | vNeg | wNeg) & (uPos | vPos | wPos);
-    unsigned live = ~LaneBits(out) & ((1u << kLanes) - 1);
+    unsigned live = ~LaneBits(&out) & ((1u << kLanes) - 1);
     if (live == 0) // most blocks
         return 0;
     LaneMask certain = (uNeg | uPos) & (vNeg | vPos) & (wNeg | wPos);
-    *sure = live & LaneBits(certain);
+    *sure = live & LaneBits(&certain);
     return live;
 }
 

@@ -53,7 +53,7 @@ static RT_INLINE unsigned MayMeet(const SphereBlock *b, const SphereLaneRay *r) 
     Lanes ar2 = r->a * r2;
     Lanes disc = ar2 - (ux * ux + uy * uy + uz * uz); // Dot: (x x + y y) + z z
     LaneMask misses = (disc < zero) & (ar2 >= r->tiny);
-    return ~LaneBits(misses) & b->filled;
+    return ~LaneBits(&misses) & b->filled;
 }
 
 // The same lanes one by one, with LineMissesSphere's scalar operations in the same order; only

@@ -42,6 +42,12 @@ RenderSettings TestSettings(const Scene *scene);
 Material Matte(const char *name, color kd);
 Material Mirror(const char *name, real k);
 
+// Two numbers, or two vectors, bit for bit; and every field of two hit records, bit for bit (the
+// struct has padding, so not memcmp).
+bool SameBits(real a, real b);
+bool SameBits(vec3 a, vec3 b);
+bool SameHit(const RayHit &a, const RayHit &b);
+
 // The share of pixels whose channels all lie within 2/255 of the other image's (same size).
 double ShareAlike(const Image &a, const Image &b);
 

@@ -15,18 +15,6 @@
 
 static const bool kDouble = sizeof(real) == sizeof(double);
 
-// Every field of two hit records, bit for bit (the struct has padding, so not memcmp).
-static bool SameBits(real a, real b) { return memcmp(&a, &b, sizeof a) == 0; }
-static bool SameBits(vec3 a, vec3 b) {
-    return SameBits(a.x, b.x) && SameBits(a.y, b.y) && SameBits(a.z, b.z);
-}
-static bool SameHit(const RayHit &a, const RayHit &b) {
-    return SameBits(a.t, b.t) && SameBits(a.point, b.point) && SameBits(a.normal, b.normal) &&
-           a.frontFace == b.frontFace && a.material == b.material && a.shape == b.shape &&
-           a.index == b.index && SameBits(a.pointError, b.pointError) &&
-           SameBits(a.awayShare, b.awayShare);
-}
-
 // The ways to ask: as written, one list of blocks, a BVH, and the BVH again with the kernel's
 // other copy (lane by lane where this processor has AVX2, else the same again).
 const int kWays = 4;
@@ -80,6 +68,13 @@ static bool SameAnswers(const Layouts *l, const Ray *ray, real tMin, real tMax) 
     return true;
 }
 
+// A ray from a random point of the cube of side `spread` around centre, in a random direction.
+static Ray RandomRay(TestRng *rng, vec3 centre, real spread) {
+    vec3 o = centre + spread * vec3{Uniform(rng) - real(0.5), Uniform(rng) - real(0.5),
+                                    Uniform(rng) - real(0.5)};
+    return {o, UnitDirection(Uniform(rng), Uniform(rng))};
+}
+
 // Passing over the triangle a ray leaves (PassesOver) changes no answer where the self-hit bound
 // holds: a ray leaving a hit on a closed sphere mesh, reflected (back to the side it came from)
 // or going on through (to the other side), finds the same nearest hit as a search from the same
@@ -89,9 +84,7 @@ static int PassOverDifferences(const Scene &scene, vec3 centre, real spread, int
     TestRng rng = {seed};
     int differ = 0;
     for (int i = 0; i < rays; i++) {
-        vec3 o = centre + spread * vec3{Uniform(&rng) - real(0.5), Uniform(&rng) - real(0.5),
-                                        Uniform(&rng) - real(0.5)};
-        Ray ray = {o, UnitDirection(Uniform(&rng), Uniform(&rng))};
+        Ray ray = RandomRay(&rng, centre, spread);
         RayHit hit;
         if (!FindNearestHit(&scene, kRobustMethods, &ray, 0, kInfinity, &hit))
             continue;
@@ -142,9 +135,8 @@ static int CountDifferences(const Scene &scene, vec3 centre, real spread, int ra
     TestRng rng = {seed};
     int differ = 0;
     for (int i = 0; i < rays; i++) {
-        vec3 o = centre + spread * vec3{Uniform(&rng) - real(0.5), Uniform(&rng) - real(0.5),
-                                        Uniform(&rng) - real(0.5)};
-        Ray ray = {o, UnitDirection(Uniform(&rng), Uniform(&rng))};
+        Ray ray = RandomRay(&rng, centre, spread);
+        vec3 o = ray.origin;
         differ += !SameAnswers(&l, &ray, 0, kInfinity);
         const Triangle &t = scene.triangles[i % scene.triangles.size()];
         vec3 targets[2] = {t.a, real(0.5) * (t.b + t.c)}; // a corner and an edge's midpoint

@@ -1,6 +1,8 @@
 // tests/test_main.cpp -- the harness: counts checks, prints failures, runs every group.
 #include "test.h"
 
+#include <cstring>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -52,6 +54,17 @@ RenderSettings TestSettings(const Scene *scene) {
 }
 
 // The share of pixels whose channels all lie within 2/255 of the other image's.
+bool SameBits(real a, real b) { return memcmp(&a, &b, sizeof a) == 0; }
+bool SameBits(vec3 a, vec3 b) {
+    return SameBits(a.x, b.x) && SameBits(a.y, b.y) && SameBits(a.z, b.z);
+}
+bool SameHit(const RayHit &a, const RayHit &b) {
+    return SameBits(a.t, b.t) && SameBits(a.point, b.point) && SameBits(a.normal, b.normal) &&
+           a.frontFace == b.frontFace && a.material == b.material && a.shape == b.shape &&
+           a.index == b.index && SameBits(a.pointError, b.pointError) &&
+           SameBits(a.awayShare, b.awayShare);
+}
+
 double ShareAlike(const Image &a, const Image &b) {
     long alike = 0, pixels = (long)a.width * a.height;
     for (long p = 0; p < pixels; p++) {

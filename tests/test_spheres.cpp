@@ -14,17 +14,6 @@
 
 static const bool kDouble = sizeof(real) == sizeof(double);
 
-// Every field of two hit records, bit for bit (the struct has padding, so not memcmp).
-static bool SameBits(real a, real b) { return memcmp(&a, &b, sizeof a) == 0; }
-static bool SameBits(vec3 a, vec3 b) {
-    return SameBits(a.x, b.x) && SameBits(a.y, b.y) && SameBits(a.z, b.z);
-}
-static bool SameHit(const RayHit &a, const RayHit &b) {
-    return SameBits(a.t, b.t) && SameBits(a.point, b.point) && SameBits(a.normal, b.normal) &&
-           a.frontFace == b.frontFace && a.material == b.material && a.shape == b.shape &&
-           a.index == b.index && SameBits(a.pointError, b.pointError);
-}
-
 static vec3 RandomUnit(TestRng *rng) {
     for (;;) {
         vec3 v = {2 * Uniform(rng) - 1, 2 * Uniform(rng) - 1, 2 * Uniform(rng) - 1};
