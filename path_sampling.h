@@ -89,7 +89,9 @@ static vec2 DiskPoint(const PathSample *p, int bounce, int first) {
 //     from a sphere), so sin(theta) = r sqrt(2 - r^2), and the tangent part is (x, y) times
 //     sqrt(2 - r^2).
 static vec3 ScatterDirection(ScatterMethod method, vec3 n, vec2 disk) {
-    real x = disk.x, y = disk.y, r2 = x * x + y * y, cosTheta = std::sqrt(1 - r2);
+    // (the max: DiskPoint's last resort, by angle, may round r^2 a hair above 1)
+    real x = disk.x, y = disk.y, r2 = x * x + y * y;
+    real cosTheta = std::sqrt(std::max(real(0), 1 - r2));
     if (method != SCATTER_COSINE) {
         real stretch = std::sqrt(2 - r2);
         x *= stretch, y *= stretch, cosTheta = 1 - r2;
@@ -116,7 +118,8 @@ static real PowerHeuristic(real a, real b) {
 // again), and the rest of the unit normal (x, y) times 2 sqrt(1 - r^2), which makes its length
 // 1 (Marsaglia, "Choosing a Point from the Surface of a Sphere", 1972).
 static void SampleSphere(const Sphere *s, vec2 disk, vec3 *p, vec3 *n) {
-    real r2 = disk.x * disk.x + disk.y * disk.y, stretch = 2 * std::sqrt(1 - r2);
+    real r2 = disk.x * disk.x + disk.y * disk.y;
+    real stretch = 2 * std::sqrt(std::max(real(0), 1 - r2)); // (as in ScatterDirection)
     *n = {stretch * disk.x, stretch * disk.y, 1 - 2 * r2};
     *p = s->center + s->radius * *n;
 }
