@@ -763,15 +763,17 @@ real EmitterArea(const Scene *scene, const Emitter *e);
 // Builds scene->layout from the scene's triangles and spheres (see SceneLayout): once per render,
 // after the scene is complete. The shape loop answers the same with or without it, only faster.
 // The BVH is built by up to `threads` threads (two at most, one on a single core), and is the
-// same bits however many build it.
+// same bits however many build it. The layout holds copies of the shapes: a scene whose shapes
+// are changed in place after it must be committed again (only a change in how many there are
+// is noticed, below, and then the plain loop runs).
 void CommitScene(Scene *scene, LayoutChoice choice, int threads = 2);
 
-// True while scene->layout was built from the triangles the scene holds.
+// True while scene->layout was built from as many triangles as the scene holds.
 inline bool LayoutIsCurrent(const Scene *scene) {
     return scene->layout.committed && scene->layout.triangleCount == scene->triangles.size();
 }
 
-// True while scene->layout's sphere blocks were built from the spheres the scene holds.
+// True while scene->layout's sphere blocks were built from as many spheres as the scene holds.
 inline bool SpheresAreCurrent(const Scene *scene) {
     return scene->layout.committed && scene->layout.sphereCount == scene->spheres.size();
 }

@@ -165,8 +165,10 @@ static void TestSphereTies() {
     CHECK(SameSphereAnswers(&p, &ray, &start), "the same bits, committed or not");
 }
 
-// A scene edited after its commit is answered as written: the committed blocks no longer hold
-// its spheres, so the plain loop runs. And the handout's textbook sphere keeps the plain loop.
+// A scene given another sphere after its commit is answered as written: the committed blocks no
+// longer hold its spheres, so the plain loop runs. (A sphere changed in place is not noticed:
+// the scene must be committed again, as CommitScene says.) And the handout's textbook sphere
+// keeps the plain loop.
 static void TestEditedSpheresAreNotStale() {
     Scene scene = WallScene();
     scene.spheres.push_back({{0, 0, -9}, 1, 0});
