@@ -328,7 +328,7 @@ static int Run(int argc, char **argv) {
     RenderSettings settings = ChosenSettings(&opt, &scene);
     // The scene's commit: only the robust triangle test has a fast layout, and the sphere blocks
     // come with it (the handouts' methods are the plain loop, as written). The BVH is built on
-    // as many threads as the render runs on.
+    // as many threads as the render runs on (two at most).
     auto commitStart = std::chrono::steady_clock::now();
     if (settings.methods.triangle == TRIANGLE_WATERTIGHT)
         CommitScene(&scene, (LayoutChoice)opt.layout, settings.threads);

@@ -698,10 +698,10 @@ vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir);
 // holds while the normal is known to 2^-10: normalKnown). A ray going away from the plane on
 // that side can then meet it only at t <= 0, which RobustPlaneHit's sound bound refuses; passing
 // over the triangle, as --self-hit skip does, changes no answer wherever that bound holds (a
-// layout test checks spheres of radius 1e-305 to 1e300) and saves that refusal, about 200
-// instructions. Going away is certain where the rounded n.d, on that side, exceeds
-// awayShare of sum |d_i| (SetUpTriangle says why). A sphere is never passed over: a ray leaving
-// it inward meets it again. (Inline: every ray that leaves a surface asks.)
+// layout test checks closed meshes of triangles around spheres of radius 1e-305 to 1e300) and saves
+// that refusal, about 200 instructions. Going away is certain where the rounded n.d, on that side,
+// exceeds awayShare of sum |d_i| (SetUpTriangle says why). A sphere is never passed over: a ray
+// leaving it inward meets it again. (Inline: every ray that leaves a surface asks.)
 inline bool PassesOver(const RayHit *hit, vec3 side, vec3 dir) {
     if (!(hit->shape == SHAPE_TRIANGLE && hit->awayShare > 0))
         return false;

@@ -2,9 +2,9 @@
 //
 // The fast layout (commit.cpp, kernel.cpp) promises the very bits of the reference functions:
 // the same t, point, normal, error bound and shape, with or without the BVH, in double and in
-// float. Each check here asks the same question three ways: the scene as written (the plain
-// loop of watertight.cpp), committed as one list of blocks, and committed with a BVH, and
-// compares every field of the answers.
+// float. Each check here asks the same question four ways: the scene as written (the plain
+// loop of watertight.cpp), committed as one list of blocks, committed with a BVH, and with the
+// BVH through the kernel's other copy, and compares every field of the answers.
 #include "hard_cases.h"
 #include "robust_scenes.h"
 #include "test.h"
@@ -29,7 +29,7 @@ static void MakeLayouts(const Scene &scene, Layouts *l) {
     l->other.layout.wide = false;
 }
 
-// One ray asked all three ways, nearest hit and any hit, from the eye and leaving the shape it
+// One ray asked all four ways, nearest hit and any hit, from the eye and leaving the shape it
 // hit (the second handout's skip): false at the first answer that differs.
 static bool SameAnswers(const Layouts *l, const Ray *ray, real tMin, real tMax) {
     const Scene *scenes[kWays] = {&l->plain, &l->list, &l->tree, &l->other};

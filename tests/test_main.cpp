@@ -53,7 +53,6 @@ RenderSettings TestSettings(const Scene *scene) {
     return s;
 }
 
-// The share of pixels whose channels all lie within 2/255 of the other image's.
 bool SameBits(real a, real b) { return memcmp(&a, &b, sizeof a) == 0; }
 bool SameBits(vec3 a, vec3 b) {
     return SameBits(a.x, b.x) && SameBits(a.y, b.y) && SameBits(a.z, b.z);
@@ -65,6 +64,7 @@ bool SameHit(const RayHit &a, const RayHit &b) {
            SameBits(a.awayShare, b.awayShare);
 }
 
+// The share of pixels whose channels all lie within 2/255 of the other image's.
 double ShareAlike(const Image &a, const Image &b) {
     long alike = 0, pixels = (long)a.width * a.height;
     for (long p = 0; p < pixels; p++) {
