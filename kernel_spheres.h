@@ -79,7 +79,7 @@ static RT_INLINE unsigned MayMeetOneByOne(const SphereBlock *b, const Ray *ray) 
 const int kChunkBlocks = 64 / kLanes;
 
 // The reference test for the spheres whose bits are set in `live` (bit i: spheres[i]), in
-// scene order, as HitShapes's plain loop (geometry.cpp) tests them: each hit lowers *tMax
+// scene order, as the plain loop (HitSpheres, geometry.cpp) tests them: each hit lowers *tMax
 // exactly when the plain loop's would, and a tie keeps the earlier sphere. hit->index is the
 // bit; the caller adds the chunk's first place. Out of line, and with few enough arguments to be
 // reached by a jump: most searches have no such sphere, and they then need no registers saved.
@@ -124,7 +124,7 @@ static RT_INLINE uint64_t ChunkMask(const SphereBlock *blocks, int first, int la
     return live;
 }
 
-// The plain sphere loop of HitShapes for a scene of at most kChunkBlocks blocks (most scenes):
+// The plain sphere loop (HitSpheres) for a scene of at most kChunkBlocks blocks (most scenes):
 // the masks, and only if a sphere passed, one call.
 template <bool kWide>
 static RT_INLINE bool TestOneChunk(const Scene *scene, int skip, const Ray *ray, real tMin,
