@@ -285,8 +285,7 @@ void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray,
     ray->origin = hit->point;
     if (methods->selfHit == SELF_HIT_BOUND) {
         ray->origin = OffsetRayOrigin(hit, dir);
-        if (PassesOver(hit, dir, dir))
-            *start = {0, SHAPE_TRIANGLE, hit->index};
+        *start = StartLeaving(hit, dir, dir);
     } else if (methods->selfHit == SELF_HIT_EPSILON) {
         start->tMin = methods->epsilon / SafeLength(dir); // epsilon world units along the ray
     } else {
@@ -305,8 +304,7 @@ bool ShadowRay(const RayHit *hit, vec3 lightPosition, const Methods *methods, Ra
     if (methods->selfHit == SELF_HIT_BOUND) {
         ray->origin = OffsetRayOrigin(hit, side);
         ray->dir = lightPosition - ray->origin;
-        *start =
-            PassesOver(hit, side, ray->dir) ? RayStart{0, SHAPE_TRIANGLE, hit->index} : kFromTheEye;
+        *start = StartLeaving(hit, side, ray->dir);
     } else {
         LeaveSurface(hit, side, methods, ray, start);
         ray->dir = lightPosition - ray->origin;

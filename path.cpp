@@ -66,20 +66,13 @@ static void Depart(Path *path, const RayHit *hit) {
         path->departure = OffsetRayOrigin(hit, hit->normal);
 }
 
-// Where a ray from the departure point starts its search: passing over the triangle it leaves
-// where it goes plainly away from it, as LeaveSurface's rays do (PassesOver).
-static RayStart Start(const RayHit *hit, vec3 dir) {
-    return PassesOver(hit, hit->normal, dir) ? RayStart{0, SHAPE_TRIANGLE, hit->index}
-                                             : kFromTheEye;
-}
-
 // ShadowRay from the hit to `target`, from the departure point when there is one.
 static bool CastShadow(const Path *path, const RayHit *hit, vec3 target, Ray *ray,
                        RayStart *start) {
     if (!path->departs)
         return ShadowRay(hit, target, &path->settings->methods, ray, start);
     *ray = {path->departure, target - path->departure};
-    *start = Start(hit, ray->dir);
+    *start = StartLeaving(hit, hit->normal, ray->dir);
     return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
 }
 
@@ -269,7 +262,7 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     if (!path->departs)
         LeaveSurface(hit, dir, &path->settings->methods, &path->ray, &path->start);
     else
-        path->ray = {path->departure, dir}, path->start = Start(hit, dir);
+        path->ray = {path->departure, dir}, path->start = StartLeaving(hit, hit->normal, dir);
     return true;
 }
 

@@ -709,6 +709,12 @@ inline bool PassesOver(const RayHit *hit, vec3 side, vec3 dir) {
     return away > hit->awayShare * (std::fabs(dir.x) + std::fabs(dir.y) + std::fabs(dir.z));
 }
 
+// Where such a ray starts its search: from t = 0, passing over the triangle it leaves where
+// PassesOver, else over nothing.
+inline RayStart StartLeaving(const RayHit *hit, vec3 side, vec3 dir) {
+    return PassesOver(hit, side, dir) ? RayStart{0, SHAPE_TRIANGLE, hit->index} : kFromTheEye;
+}
+
 // The ray that leaves a hit in direction dir, and what it must not hit, by the self-hit method:
 // bound, from OffsetRayOrigin, passing over the triangle it leaves where PassesOver; epsilon,
 // from the hit point, ignoring hits closer than methods->epsilon; skip, from the hit point,
