@@ -273,6 +273,26 @@ bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, con
     return HitShapes(scene, methods, ray, start, tMax, false, hit);
 }
 
+// The packet is taken only where each ray's search would use the committed layout's kernel with
+// the ray as it is: the watertight and stable methods, a current layout, and no ray that
+// ScaleRay would rescale.
+void FindNearestHitsFromEye(const Scene *scene, Methods methods, const Ray *rays, int count,
+                            RayHit *hits, bool *found) {
+    RayShear shears[kLanes];
+    bool packet = methods.triangle == TRIANGLE_WATERTIGHT && methods.sphere != SPHERE_TEXTBOOK &&
+                  LayoutIsCurrent(scene) && SpheresAreCurrent(scene) && count <= kLanes;
+    real lo = PowerOfTwo(-kDirectionWindow), hi = PowerOfTwo(kDirectionWindow); // ScaleRay's
+    for (int r = 0; r < count && packet; r++) {
+        real m = MaxComponent(rays[r].dir);
+        packet = m >= lo && m <= hi; // as ScaleRay: the ray is searched for as it is
+        ShearRay(&rays[r], &shears[r]);
+    }
+    if (packet && HitCommittedPacket(scene, rays, shears, count, hits, found))
+        return;
+    for (int r = 0; r < count; r++)
+        found[r] = FindNearestHitFrom(scene, methods, &rays[r], &kFromTheEye, kInfinity, &hits[r]);
+}
+
 bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
                 real tMax) {
     RayHit scratch;

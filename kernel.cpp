@@ -22,7 +22,7 @@
 // The block test is in kernel_blocks.h, the walk in kernel_walk.h; this file puts them together
 // for one ray and dispatches. The spheres' blocks (kernel_spheres.h) get the same treatment: the
 // first step of the stable sphere test on kLanes spheres at once, the reference test for the rest.
-#include "kernel_spheres.h"
+#include "kernel_packet.h"
 #include "kernel_walk.h"
 
 template <int kz, bool kWide>
@@ -112,6 +112,41 @@ bool HitCommittedSpheres(const Scene *scene, int skip, const Ray *ray, real tMin
 #endif
     return one ? OneChunkBaseline(scene, skip, ray, tMin, tMax, anyHit, hit)
                : ChunksBaseline(scene, skip, ray, tMin, tMax, anyHit, hit);
+}
+
+// Packets of rays from the eye (kernel_packet.h), in the AVX2 copy only: lane by lane they would
+// repeat the one-ray loop's work with more bookkeeping.
+#if RT_DISPATCH
+RT_AVX2 static void PacketAvx2(const Scene *scene, PacketSearch *p) {
+    int kz = p->shears[0].kz;
+    if (kz == 0)
+        SearchPacket<0>(scene, p);
+    else if (kz == 1)
+        SearchPacket<1>(scene, p);
+    else
+        SearchPacket<2>(scene, p);
+}
+#endif
+
+bool HitCommittedPacket(const Scene *scene, const Ray *rays, const RayShear *shears, int count,
+                        RayHit *hits, bool *found) {
+#if RT_DISPATCH
+    if (!scene->layout.wide || !scene->layout.nodes.empty() || count < 1 || count > kLanes)
+        return false;
+    for (int r = 1; r < count; r++)
+        if (shears[r].kz != shears[0].kz) // one renaming of the axes for the whole packet
+            return false;
+    PacketSearch p = {rays, shears, count, {}, {}, {}, hits};
+    for (int r = 0; r < count; r++)
+        p.tMax[r] = kInfinity, p.best[r] = -1, p.found[r] = false;
+    PacketAvx2(scene, &p);
+    for (int r = 0; r < count; r++)
+        found[r] = p.found[r];
+    return true;
+#else
+    (void)scene, (void)rays, (void)shears, (void)count, (void)hits, (void)found;
+    return false;
+#endif
 }
 
 bool KernelCanBeWide() {

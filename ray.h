@@ -685,6 +685,12 @@ bool AnyHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real
 // The same two questions for a ray that starts as `start` says, with t in (start->tMin, tMax).
 bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
                         real tMax, RayHit *hit);
+
+// FindNearestHitFrom for `count` rays from the eye (kFromTheEye, tMax infinity), at most kLanes:
+// found[r] and hits[r] are exactly what it gives rays[r]. A pixel's samples, tested together
+// where the kernel can (HitCommittedPacket), one by one where it cannot.
+void FindNearestHitsFromEye(const Scene *scene, Methods methods, const Ray *rays, int count,
+                            RayHit *hits, bool *found);
 bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
                 real tMax);
 
@@ -794,6 +800,13 @@ bool HitCommittedSpheres(const Scene *scene, int skip, const Ray *ray, real tMin
 bool HitCommittedTriangles(const Scene *scene, int skip, const Ray *ray, const RayShear *shear,
                            real tMin, real tMax, bool anyHit, RayHit *hit);
 
+// The plain loop for `count` rays from the eye at once (at most kLanes, every one unscaled by
+// ScaleRay, with tMin 0 and no shape to skip): each ray's nearest hit in (0, infinity), to the
+// bit, in hits[r] where found[r]. False, and nothing written, where the packet cannot be taken:
+// no AVX2, a BVH, or rays whose shears rename the axes differently.
+bool HitCommittedPacket(const Scene *scene, const Ray *rays, const RayShear *shears, int count,
+                        RayHit *hits, bool *found);
+
 // True if this processor runs the kernel's AVX2 copy (CommitScene sets SceneLayout::wide).
 bool KernelCanBeWide();
 
@@ -852,6 +865,11 @@ void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *ef
 // records them in log->tree if that is set).
 color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
                const RayStart *start, RayChain chain, TraceLog *log);
+
+// TraceRay for a primary ray whose nearest hit has been found already (FindNearestHitsFromEye):
+// the same colour, counts and record.
+color TraceFoundEyeRay(const Scene *scene, const RenderSettings *settings, const Ray *ray,
+                       bool found, RayHit *hit, TraceLog *log);
 
 // Counts a ray of this kind; adds a node for it to log->tree, if a tree is being recorded, with
 // log->current as its parent (returns the node's index, or -1).

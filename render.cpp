@@ -114,6 +114,27 @@ static color TraceSample(const Scene *scene, const RenderSettings *settings, vec
     return TraceRay(scene, settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, log);
 }
 
+// Samples first .. first + count - 1 of pixel (i, j) (count at most kLanes) at `positions`,
+// added to *sum in turn. Without path tracing their nearest hits are searched for together
+// (FindNearestHitsFromEye: a packet where the kernel can), and each is then shaded as TraceRay
+// would: the same colours, added in the same order.
+static void AddSamples(const Scene *scene, const RenderSettings *settings, const vec2 *positions,
+                       int i, int j, int first, int count, TraceLog *log, color *sum) {
+    if (scene->shading == SHADING_PATH) {
+        for (int k = 0; k < count; k++)
+            *sum = *sum + TraceSample(scene, settings, positions[k], i, j, first + k, log);
+        return;
+    }
+    Ray rays[kLanes];
+    RayHit hits[kLanes];
+    bool found[kLanes];
+    for (int k = 0; k < count; k++)
+        GetCameraRay(&settings->camera, settings->width, settings->height, positions[k], &rays[k]);
+    FindNearestHitsFromEye(scene, settings->methods, rays, count, hits, found);
+    for (int k = 0; k < count; k++)
+        *sum = *sum + TraceFoundEyeRay(scene, settings, &rays[k], found[k], &hits[k], log);
+}
+
 // Whether samples differ, in any channel clamped to [0, 1], by more than kAdaptiveContrast.
 static bool Disagree(const color *c, int count) {
     for (int channel = 0; channel < 3; channel++) {
@@ -219,10 +240,15 @@ color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int
     } else {
         bool jitter = settings->sampling != SAMPLES_GRID && n > 1;
         GridCell cell = FindCell(0, n);
-        for (int s = 0; s < n; s++) {
-            cell = NextCell(&cell, s, n);
-            vec2 p = jitter ? JitterPosition(i, j, &cell, s, 0) : GridPosition(i, j, &cell, s);
-            result = result + TraceSample(scene, settings, p, i, j, s, &log);
+        for (int first = 0; first < n; first += kLanes) {
+            int count = std::min(kLanes, n - first);
+            vec2 p[kLanes];
+            for (int s = first; s < first + count; s++) {
+                cell = NextCell(&cell, s, n);
+                p[s - first] =
+                    jitter ? JitterPosition(i, j, &cell, s, 0) : GridPosition(i, j, &cell, s);
+            }
+            AddSamples(scene, settings, p, i, j, first, count, &log, &result);
         }
         result = (real(1) / n) * result;
     }

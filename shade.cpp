@@ -307,20 +307,18 @@ void CountRay(RayKind kind, RayStats *stats) {
     (*counter[kind])++;
 }
 
-color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
-               const RayStart *start, RayChain chain, TraceLog *log) {
-    CountRay(kind, &log->stats);
-    int node = RecordRay(kind, ray, log);
-    RayHit hit;
-    bool found = FindNearestHitFrom(scene, settings->methods, ray, start, kInfinity, &hit);
+// TraceRay's second half, for a ray recorded as `node` whose nearest hit has been searched for:
+// the colour it brings back, and the tree's record of it.
+static color ShadeNearest(const Scene *scene, const RenderSettings *settings, const Ray *ray,
+                          RayChain chain, int node, bool found, RayHit *hit, TraceLog *log) {
     if (settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads the hash
-        log->surfaces = MixSurface(log->surfaces, found ? 2 * hit.index + hit.shape + 1 : 0);
+        log->surfaces = MixSurface(log->surfaces, found ? 2 * hit->index + hit->shape + 1 : 0);
     color result = scene->background;
     if (found) {
         int parent = log->current;
         log->current = node;
         Shading sh = {scene, settings, log};
-        Surface surface = {ray, &hit, &scene->materials[hit.material], chain};
+        Surface surface = {ray, hit, &scene->materials[hit->material], chain};
         result = ShadeHit(&sh, &surface);
         log->current = parent;
     }
@@ -328,8 +326,24 @@ color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind,
         RayNode *n = &(*log->tree)[node];
         n->hit = found;
         if (found)
-            n->record = hit;
+            n->record = *hit;
         n->light = result;
     }
     return result;
+}
+
+color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
+               const RayStart *start, RayChain chain, TraceLog *log) {
+    CountRay(kind, &log->stats);
+    int node = RecordRay(kind, ray, log);
+    RayHit hit;
+    bool found = FindNearestHitFrom(scene, settings->methods, ray, start, kInfinity, &hit);
+    return ShadeNearest(scene, settings, ray, chain, node, found, &hit, log);
+}
+
+color TraceFoundEyeRay(const Scene *scene, const RenderSettings *settings, const Ray *ray,
+                       bool found, RayHit *hit, TraceLog *log) {
+    CountRay(RAY_PRIMARY, &log->stats);
+    int node = RecordRay(RAY_PRIMARY, ray, log);
+    return ShadeNearest(scene, settings, ray, RayChain{1, 1}, node, found, hit, log);
 }

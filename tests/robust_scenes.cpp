@@ -136,3 +136,27 @@ Scene TransformedScene(const Scene &original, real scale, vec3 shift) {
     s.camera.perspective.width *= scale;
     return s;
 }
+
+// A closed, watertight sphere of 8 * 4^level triangles (a subdivided octahedron, corners
+// pushed out to radius r) around c: rays aimed at its corners and edge midpoints meet shared
+// edges and corners, where ties between triangles are decided by their order in the scene.
+void AddOctasphere(Scene *scene, vec3 c, real r, int level) {
+    std::vector<Triangle> faces;
+    vec3 p[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    int f[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                   {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    for (auto &t : f)
+        faces.push_back({p[t[0]], p[t[1]], p[t[2]], 0});
+    for (int k = 0; k < level; k++) {
+        std::vector<Triangle> finer;
+        for (const Triangle &t : faces) {
+            vec3 ab = SafeNormalize(t.a + t.b), bc = SafeNormalize(t.b + t.c);
+            vec3 ca = SafeNormalize(t.c + t.a);
+            finer.push_back({t.a, ab, ca, 0}), finer.push_back({ab, t.b, bc, 0});
+            finer.push_back({ca, bc, t.c, 0}), finer.push_back({ab, bc, ca, 0});
+        }
+        faces = finer;
+    }
+    for (Triangle t : faces)
+        scene->triangles.push_back({c + r * t.a, c + r * t.b, c + r * t.c, 0});
+}

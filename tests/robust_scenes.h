@@ -40,4 +40,10 @@ std::string AssignmentText(double scale, double shift, const char *camera, bool 
 // by `scale`, then moved by `shift`.
 Scene TransformedScene(const Scene &original, real scale, vec3 shift);
 
+// A closed, watertight sphere of 8 * 4^level triangles (a subdivided octahedron, corners
+// pushed out to radius r) around c, added to the scene with material 0: rays aimed at its corners
+// and edge midpoints meet shared edges and corners, where ties between triangles are decided by
+// their order in the scene.
+void AddOctasphere(Scene *scene, vec3 c, real r, int level);
+
 #endif

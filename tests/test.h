@@ -85,6 +85,7 @@ void TestFiles();
 void TestMethods();
 void TestLayout();
 void TestSpheres();
+void TestPacket();
 void TestPath();
 void TestMesh();
 void TestMeshRays();

@@ -102,6 +102,7 @@ int main() {
     TestMethods();
     TestLayout();
     TestSpheres();
+    TestPacket();
     TestPath();
     TestSceneFiles();
     TestMesh();

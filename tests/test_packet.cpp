@@ -1,0 +1,179 @@
+// tests/test_packet.cpp -- a packet of rays from the eye answers what each ray alone answers.
+//
+// A pixel's samples are searched for together (FindNearestHitsFromEye): up to kLanes rays in the
+// lanes of the kernel, one shape at a time (kernel_packet.h). Each ray must get the very bits the
+// plain loop gives it alone: the same t, point, normal, error bound and shape, ties included. The
+// checks ask each packet three ways (the packet kernel itself, FindNearestHitsFromEye, and each
+// ray alone in the scene as written) and count the packets the kernel took, so that a packet path
+// that quietly fell back to one ray at a time would show.
+#include "robust_scenes.h"
+#include "test.h"
+
+#include <cstdio>
+
+static const bool kDouble = sizeof(real) == sizeof(double);
+
+// What a set of packets found: rays whose answers differed, and packets the kernel took.
+struct PacketCount {
+    int differ, taken, packets;
+};
+
+// One packet, asked three ways against the committed scene and the scene as written.
+static void AskPacket(const Scene *committed, const Scene *plain, const Ray *rays, int count,
+                      PacketCount *c) {
+    RayShear shears[kLanes];
+    RayHit kernel[kLanes], hits[kLanes];
+    bool kernelFound[kLanes], found[kLanes];
+    for (int r = 0; r < count; r++)
+        ShearRay(&rays[r], &shears[r]);
+    bool taken = HitCommittedPacket(committed, rays, shears, count, kernel, kernelFound);
+    FindNearestHitsFromEye(committed, kRobustMethods, rays, count, hits, found);
+    c->taken += taken, c->packets++;
+    for (int r = 0; r < count; r++) {
+        RayHit alone;
+        bool one =
+            FindNearestHitFrom(plain, kRobustMethods, &rays[r], &kFromTheEye, kInfinity, &alone);
+        bool same = found[r] == one && (!one || SameHit(hits[r], alone));
+        if (taken)
+            same = same && kernelFound[r] == one && (!one || SameHit(kernel[r], alone));
+        c->differ += !same;
+    }
+}
+
+// Packets of `count` rays from `eye` (each origin moved by up to `wobble` times the eye's
+// distance to `centre`, as the screen camera's rays start on the screen), aimed at random points
+// of a cube of side `spread` around centre, or where `aim` is set at its triangles' corners and
+// edge midpoints (a tie between the triangles that share them). Unit directions, so that rays at
+// every scale are searched for as they are, where the packet can take them.
+struct PacketRays {
+    vec3 eye, centre;
+    real spread, wobble;
+    const std::vector<Triangle> *aim;
+};
+static PacketCount CountPacketDifferences(const Scene &scene, const PacketRays *p, int packets,
+                                          int count, uint64_t seed) {
+    Scene committed = scene, plain = scene; // (copies start uncommitted)
+    CommitScene(&committed, LAYOUT_LIST);
+    TestRng rng = {seed};
+    PacketCount c = {0, 0, 0};
+    real reach = SafeLength(p->centre - p->eye);
+    for (int k = 0; k < packets; k++) {
+        Ray rays[kLanes];
+        for (int r = 0; r < count; r++) {
+            vec3 target =
+                p->centre + p->spread * vec3{Uniform(&rng) - real(0.5), Uniform(&rng) - real(0.5),
+                                             Uniform(&rng) - real(0.5)};
+            if (p->aim) {
+                const Triangle &t = (*p->aim)[(k * kLanes + r) % p->aim->size()];
+                target = r % 2 ? t.a : real(0.5) * (t.b + t.c);
+            }
+            vec3 o = p->eye + p->wobble * reach *
+                                  vec3{Uniform(&rng) - real(0.5), Uniform(&rng) - real(0.5), 0};
+            rays[r] = {o, SafeNormalize(target - o)}; // unit: ScaleRay leaves it as it is
+        }
+        AskPacket(&committed, &plain, rays, count, &c);
+    }
+    return c;
+}
+
+static void Report(const PacketCount &c, const char *what, bool mustTake) {
+    char line[240];
+    snprintf(line, sizeof line, "%s: of %d packets (%d taken by the kernel), %d rays differ", what,
+             c.packets, c.taken, c.differ);
+    bool took = !mustTake || !KernelCanBeWide() || c.taken > c.packets / 2;
+    CHECK(c.differ == 0 && took, line);
+}
+
+// The test scene's spheres and 139 triangles, seen from its camera: clusters of rays as a pixel's
+// samples are, then rays spread over the whole view, of every packet size.
+static void TestPacketsInTheTestScene() {
+    Scene test;
+    BuildTestScene(&test);
+    vec3 eye = test.camera.perspective.eye;
+    for (int count = 1; count <= kLanes; count++) {
+        PacketRays near = {eye, {0, 0, -8}, real(0.05), 0, nullptr};
+        Report(CountPacketDifferences(test, &near, 150, count, 40 + count),
+               "the test scene, clustered rays", true);
+        PacketRays wide = {eye, {0, 0, -8}, 12, 0, nullptr};
+        Report(CountPacketDifferences(test, &wide, 150, count, 60 + count),
+               "the test scene, rays across the view", false);
+    }
+}
+
+// A closed sphere mesh at the scales the robustness tables claim, rays aimed at its corners and
+// edge midpoints from one eye, and from origins spread as the screen camera's are.
+static void TestPacketsAtEveryScale() {
+    const double scales[] = {1e-300, 1e-30, 1e-6, 1, 1e6, 1e30, 1e300};
+    const double floatScales[] = {1e-30, 1e-8, 1e-3, 1, 1e3, 1e8, 1e30};
+    for (int k = 0; k < 7; k++) {
+        real s = real(kDouble ? scales[k] : floatScales[k]);
+        Scene ball = WallScene();
+        AddOctasphere(&ball, {s, -2 * s, 3 * s}, s, 3); // 512 triangles
+        ball.spheres.push_back({{s, -2 * s, 3 * s}, real(0.5) * s, 0});
+        ball.spheres.push_back({{2 * s, -2 * s, 3 * s}, real(0.25) * s, 0});
+        vec3 eye = {s, -2 * s, 9 * s};
+        PacketRays corners = {eye, {s, -2 * s, 3 * s}, s, 0, &ball.triangles};
+        PacketRays spread = {eye, {s, -2 * s, 3 * s}, 2 * s, real(0.01), &ball.triangles};
+        PacketRays inside = {{s, -2 * s, real(3.9) * s}, {s, -2 * s, 3 * s}, s, 0, nullptr};
+        char what[120];
+        snprintf(what, sizeof what, "a 512-triangle sphere mesh of radius %g, at its corners",
+                 (double)s);
+        Report(CountPacketDifferences(ball, &corners, 200, kLanes, 80 + k), what, true);
+        snprintf(what, sizeof what, "radius %g, from origins 1/100 of the way apart", (double)s);
+        Report(CountPacketDifferences(ball, &spread, 200, kLanes, 90 + k), what, true);
+        snprintf(what, sizeof what, "radius %g, from inside the mesh", (double)s);
+        Report(CountPacketDifferences(ball, &inside, 200, kLanes, 100 + k), what, false);
+    }
+}
+
+// Ties: two copies of each triangle and of each sphere, and spheres that touch. The plain loop
+// keeps the earlier shape at equal t; so must every lane.
+static void TestPacketTies() {
+    Scene scene = WallScene();
+    AddOctasphere(&scene, {0, 0, -6}, 2, 2);
+    size_t n = scene.triangles.size();
+    for (size_t i = 0; i < n; i++)
+        scene.triangles.push_back(scene.triangles[i]);
+    for (int i = 0; i < 12; i++) { // 24 spheres, more than one sphere block in either build
+        Sphere s = {{real(i % 4) - real(1.5), real(i / 4) - 1, -3}, real(0.5), 0};
+        scene.spheres.push_back(s), scene.spheres.push_back(s);
+    }
+    PacketRays rays = {{0, 0, 4}, {0, 0, -4}, 5, 0, nullptr};
+    Report(CountPacketDifferences(scene, &rays, 400, kLanes, 7),
+           "every triangle and every sphere twice, touching spheres", true);
+    PacketRays corners = {{0, 0, 4}, {0, 0, -6}, 2, 0, &scene.triangles};
+    Report(CountPacketDifferences(scene, &corners, 400, kLanes, 8),
+           "the same, rays at the corners and edge midpoints", true);
+}
+
+// Rays in one packet whose shears rename the axes differently are not taken as a packet; each
+// is then searched for alone, with the same answers.
+static void TestMixedAxesFallBack() {
+    Scene scene = WallScene();
+    AddOctasphere(&scene, {0, 0, 0}, 1, 2);
+    Scene committed = scene;
+    CommitScene(&committed, LAYOUT_LIST);
+    Ray rays[2] = {{{0, 0, 5}, {0, 0, -1}}, {{5, 0, 0}, {-1, 0, 0}}};
+    RayShear shears[2];
+    ShearRay(&rays[0], &shears[0]), ShearRay(&rays[1], &shears[1]);
+    RayHit hits[2];
+    bool found[2];
+    CHECK(!HitCommittedPacket(&committed, rays, shears, 2, hits, found),
+          "a ray along z and a ray along x: not one packet");
+    FindNearestHitsFromEye(&committed, kRobustMethods, rays, 2, hits, found);
+    RayHit alone[2];
+    bool same = true;
+    for (int r = 0; r < 2; r++)
+        same = same && FindNearestHit(&scene, kRobustMethods, &rays[r], 0, kInfinity, &alone[r]) &&
+               found[r] && SameHit(hits[r], alone[r]);
+    CHECK(same, "each is answered as it is alone");
+    CHECK_NEAR(hits[0].t, 4, 4 * kRelTol, "the ray along z meets the mesh's corner 4 away");
+    CHECK_NEAR(hits[1].t, 4, 4 * kRelTol, "and so does the ray along x");
+}
+
+void TestPacket() {
+    TestPacketsInTheTestScene();
+    TestPacketsAtEveryScale();
+    TestPacketTies();
+    TestMixedAxesFallBack();
+}
