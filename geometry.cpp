@@ -275,22 +275,45 @@ bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, con
 
 // The packet is taken only where each ray's search would use the committed layout's kernel with
 // the ray as it is: the watertight and stable methods, a current layout, and no ray that
-// ScaleRay would rescale.
-void FindNearestHitsFromEye(const Scene *scene, Methods methods, const Ray *rays, int count,
-                            RayHit *hits, bool *found) {
+// ScaleRay would rescale. False where it is not taken.
+static bool HitPacket(const Scene *scene, Methods methods, RayPacket *packet, RayHit *hits,
+                      bool *found) {
+    if (methods.triangle != TRIANGLE_WATERTIGHT || methods.sphere == SPHERE_TEXTBOOK ||
+        !LayoutIsCurrent(scene) || !SpheresAreCurrent(scene) || packet->count > kLanes)
+        return false;
     RayShear shears[kLanes];
-    bool packet = methods.triangle == TRIANGLE_WATERTIGHT && methods.sphere != SPHERE_TEXTBOOK &&
-                  LayoutIsCurrent(scene) && SpheresAreCurrent(scene) && count <= kLanes;
     real lo = PowerOfTwo(-kDirectionWindow), hi = PowerOfTwo(kDirectionWindow); // ScaleRay's
-    for (int r = 0; r < count && packet; r++) {
-        real m = MaxComponent(rays[r].dir);
-        packet = m >= lo && m <= hi; // as ScaleRay: the ray is searched for as it is
-        ShearRay(&rays[r], &shears[r]);
+    for (int r = 0; r < packet->count; r++) {
+        real m = MaxComponent(packet->rays[r].dir);
+        if (!(m >= lo && m <= hi)) // as ScaleRay: outside it, the ray would be rescaled
+            return false;
+        ShearRay(&packet->rays[r], &shears[r]);
     }
-    if (packet && HitCommittedPacket(scene, rays, shears, count, hits, found))
-        return;
+    packet->shears = shears;
+    return HitCommittedPacket(scene, packet, hits, found);
+}
+
+bool FindNearestHitsFromEye(const Scene *scene, Methods methods, const Ray *rays, int count,
+                            RayHit *hits, bool *found) {
+    RayStart starts[kLanes];
+    for (int r = 0; r < count && r < kLanes; r++)
+        starts[r] = kFromTheEye;
+    RayPacket packet = {rays, nullptr, starts, count, kInfinity, false};
+    if (HitPacket(scene, methods, &packet, hits, found))
+        return true;
     for (int r = 0; r < count; r++)
         found[r] = FindNearestHitFrom(scene, methods, &rays[r], &kFromTheEye, kInfinity, &hits[r]);
+    return false;
+}
+
+void AnyHitsFrom(const Scene *scene, Methods methods, const Ray *rays, const RayStart *starts,
+                 int count, real tMax, bool *blocked) {
+    RayHit scratch[kLanes];
+    RayPacket packet = {rays, nullptr, starts, count, tMax, true};
+    if (HitPacket(scene, methods, &packet, scratch, blocked))
+        return;
+    for (int r = 0; r < count; r++)
+        blocked[r] = AnyHitFrom(scene, methods, &rays[r], &starts[r], tMax);
 }
 
 bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,

@@ -26,23 +26,30 @@ struct PacketLanes {
 
 // Each ray's search so far, as TestBlocks and HitLiveSpheres keep it for one ray.
 struct PacketSearch {
-    const Ray *rays;
-    const RayShear *shears;
-    int count;          // rays in the packet, at most kLanes
-    real tMax[kLanes];  // each ray's nearest hit so far (its interval's end)
+    const RayPacket *packet;
+    unsigned active;                 // the rays still searching (an any-hit search drops each hit)
+    real tMin[kLanes], tMax[kLanes]; // each ray's interval; tMax: its nearest hit so far
+    int skipSphere[kLanes], skipTriangle[kLanes]; // the shape each ray leaves (RayStart); -1: none
     int best[kLanes];   // each ray's nearest triangle so far; -1: none (or only a sphere)
     bool found[kLanes]; // whether each ray has hit anything
     RayHit *hits;       // each ray's nearest hit
 };
+
+// Ray r has hit a shape: an any-hit search is over for it.
+static RT_INLINE void Found(PacketSearch *p, int r) {
+    p->found[r] = true;
+    if (p->packet->anyHit)
+        p->active &= ~(1u << r);
+}
 
 static RT_INLINE void SetLane(Lanes *v, int lane, real x) { (*v)[lane] = x; }
 
 // The lanes, from each ray's RayShear (renamed origin, shear) and its Ray (origin, direction).
 static RT_INLINE void FillPacketLanes(const PacketSearch *p, PacketLanes *l) {
     for (int lane = 0; lane < kLanes; lane++) {
-        int r = lane < p->count ? lane : 0;
-        const RayShear *k = &p->shears[r];
-        const Ray *ray = &p->rays[r];
+        int r = lane < p->packet->count ? lane : 0;
+        const RayShear *k = &p->packet->shears[r];
+        const Ray *ray = &p->packet->rays[r];
         SetLane(&l->ox, lane, k->origin.x), SetLane(&l->oy, lane, k->origin.y);
         SetLane(&l->oz, lane, k->origin.z), SetLane(&l->sx, lane, k->sx);
         SetLane(&l->sy, lane, k->sy);
@@ -72,20 +79,23 @@ static RT_INLINE unsigned RaysMayMeet(vec3 c, real r2, const PacketLanes *l) {
 // The spheres, in scene order (HitLiveSpheres for each ray): only sphere blocks' lanes that hold
 // one. Each hit lowers its ray's tMax.
 static RT_INLINE void PacketSpheres(const Scene *scene, const PacketLanes *l, PacketSearch *p) {
-    unsigned rays = (1u << p->count) - 1;
     const std::vector<SphereBlock> &blocks = scene->layout.sphereBlocks;
-    for (size_t k = 0; k < blocks.size(); k++) {
+    for (size_t k = 0; k < blocks.size() && p->active != 0; k++) {
         const SphereBlock *b = &blocks[k];
         for (unsigned left = b->filled; left != 0; left &= left - 1) {
             int lane = __builtin_ctz(left), i = (int)k * kLanes + lane;
             vec3 c = {b->center[0][lane], b->center[1][lane], b->center[2][lane]};
-            for (unsigned live = RaysMayMeet(c, b->r2[lane], l) & rays; live; live &= live - 1) {
+            unsigned live = RaysMayMeet(c, b->r2[lane], l) & p->active;
+            for (; live != 0; live &= live - 1) {
                 int r = __builtin_ctz(live);
-                if (!IntersectSphere(&scene->spheres[i], &p->rays[r], 0, p->tMax[r], &p->hits[r]))
+                RayHit *hit = &p->hits[r];
+                if (i == p->skipSphere[r] ||
+                    !IntersectSphere(&scene->spheres[i], &p->packet->rays[r], p->tMin[r],
+                                     p->tMax[r], hit))
                     continue;
-                p->hits[r].index = i;
-                p->tMax[r] = p->hits[r].t;
-                p->found[r] = true;
+                hit->index = i;
+                p->tMax[r] = hit->t;
+                Found(p, r);
             }
         }
     }
@@ -126,29 +136,33 @@ static RT_INLINE unsigned RaysSurvive(const TriangleBlock *b, int lane, const Pa
 // spheres: TestBlocks' survivor step for each ray that survives, with its own interval.
 template <int kz>
 static RT_INLINE void PacketTriangles(const Scene *scene, const PacketLanes *l, PacketSearch *p) {
-    unsigned rays = (1u << p->count) - 1;
+    const RayPacket *q = p->packet;
     const std::vector<TriangleBlock> &blocks = scene->layout.blocks;
-    for (const TriangleBlock &b : blocks) {
+    for (size_t k = 0; k < blocks.size() && p->active != 0; k++) {
+        const TriangleBlock *b = &blocks[k];
         for (int lane = 0; lane < kLanes; lane++) {
-            int index = b.index[lane];
+            int index = b->index[lane];
             if (index < 0)
                 continue;
             unsigned sure = 0;
-            unsigned live = RaysSurvive<kz>(&b, lane, l, rays, &sure);
+            unsigned live = RaysSurvive<kz>(b, lane, l, p->active, &sure);
             for (; live != 0; live &= live - 1) {
                 int r = __builtin_ctz(live);
+                if (index == p->skipTriangle[r])
+                    continue;
                 real limit = p->best[r] >= 0 && index < p->best[r] ? NextAfter(p->tMax[r], true)
                                                                    : p->tMax[r];
                 const Triangle *tri = &scene->triangles[index];
                 const TriangleSetUp *setUp = &scene->layout.setUps[index];
                 RayHit *hit = &p->hits[r];
-                if (!(sure >> r & 1u ? RobustPlaneHit(tri, setUp, &p->rays[r], 0, limit, hit)
-                                     : IntersectWatertight(tri, setUp, &p->rays[r], &p->shears[r],
-                                                           0, limit, hit)))
+                if (!(sure >> r & 1u
+                          ? RobustPlaneHit(tri, setUp, &q->rays[r], p->tMin[r], limit, hit)
+                          : IntersectWatertight(tri, setUp, &q->rays[r], &q->shears[r], p->tMin[r],
+                                                limit, hit)))
                     continue;
                 hit->index = p->best[r] = index;
                 p->tMax[r] = hit->t;
-                p->found[r] = true;
+                Found(p, r);
             }
         }
     }

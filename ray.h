@@ -688,9 +688,14 @@ bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, con
 
 // FindNearestHitFrom for `count` rays from the eye (kFromTheEye, tMax infinity), at most kLanes:
 // found[r] and hits[r] are exactly what it gives rays[r]. A pixel's samples, tested together
-// where the kernel can (HitCommittedPacket), one by one where it cannot.
-void FindNearestHitsFromEye(const Scene *scene, Methods methods, const Ray *rays, int count,
+// where the kernel can (HitCommittedPacket: then true), one by one where it cannot.
+bool FindNearestHitsFromEye(const Scene *scene, Methods methods, const Ray *rays, int count,
                             RayHit *hits, bool *found);
+
+// AnyHitFrom for `count` rays (at most kLanes), each from its start, with one tMax: blocked[r] is
+// exactly what it gives rays[r]. Shadow rays toward one light, tested together where they can be.
+void AnyHitsFrom(const Scene *scene, Methods methods, const Ray *rays, const RayStart *starts,
+                 int count, real tMax, bool *blocked);
 bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
                 real tMax);
 
@@ -800,12 +805,22 @@ bool HitCommittedSpheres(const Scene *scene, int skip, const Ray *ray, real tMin
 bool HitCommittedTriangles(const Scene *scene, int skip, const Ray *ray, const RayShear *shear,
                            real tMin, real tMax, bool anyHit, RayHit *hit);
 
-// The plain loop for `count` rays from the eye at once (at most kLanes, every one unscaled by
-// ScaleRay, with tMin 0 and no shape to skip): each ray's nearest hit in (0, infinity), to the
-// bit, in hits[r] where found[r]. False, and nothing written, where the packet cannot be taken:
-// no AVX2, a BVH, or rays whose shears rename the axes differently.
-bool HitCommittedPacket(const Scene *scene, const Ray *rays, const RayShear *shears, int count,
-                        RayHit *hits, bool *found);
+// A packet for the kernel: `count` rays (at most kLanes), each searched for as it is (ScaleRay
+// leaves it alone), with its shear, its start (tMin, and the shape it leaves), and one tMax.
+struct RayPacket {
+    const Ray *rays;
+    const RayShear *shears;
+    const RayStart *starts;
+    int count;
+    real tMax;
+    bool anyHit; // each ray stops at its first hit, as AnyHitFrom does
+};
+
+// HitShapes for every ray of the packet at once: found[r] and hits[r] are, to the bit, what the
+// plain loop gives rays[r] alone (with anyHit, whether it is blocked). False, and nothing
+// written, where the packet cannot be taken: no AVX2, a BVH, or rays whose shears rename the
+// axes differently.
+bool HitCommittedPacket(const Scene *scene, const RayPacket *packet, RayHit *hits, bool *found);
 
 // True if this processor runs the kernel's AVX2 copy (CommitScene sets SceneLayout::wide).
 bool KernelCanBeWide();
@@ -866,10 +881,29 @@ void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *ef
 color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
                const RayStart *start, RayChain chain, TraceLog *log);
 
-// TraceRay for a primary ray whose nearest hit has been found already (FindNearestHitsFromEye):
-// the same colour, counts and record.
+// What became of a surface's shadow ray toward each light, where it was cast before the surface
+// was shaded (TraceEyeRays): not cast (unknown), none needed (ShadowRay found no direction),
+// the light visible, or blocked. Kept for the scene's first kKnownLights lights.
+enum ShadowAnswer { SHADOW_UNKNOWN, SHADOW_NO_RAY, SHADOW_VISIBLE, SHADOW_BLOCKED };
+const int kKnownLights = 8;
+struct KnownShadows {
+    signed char answer[kKnownLights]; // a ShadowAnswer for each light
+};
+
+// TraceRay for a primary ray whose nearest hit has been found already (FindNearestHitsFromEye),
+// and whose surface's shadow rays may have been cast (`known`, or null): the same colour, counts
+// and record.
 color TraceFoundEyeRay(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                       bool found, RayHit *hit, TraceLog *log);
+                       bool found, RayHit *hit, const KnownShadows *known, TraceLog *log);
+
+// ---- packet.cpp: a pixel's samples searched for together ----------------------------------
+
+// TraceRay for `count` primary rays (at most kLanes), their colours added to *sum in turn: the
+// same colours, counts and sums, found faster. Their nearest hits are searched for together
+// (FindNearestHitsFromEye), and where that took a packet, so are their surfaces' shadow rays
+// toward each light (AnyHitsFrom).
+void TraceEyeRays(const Scene *scene, const RenderSettings *settings, const Ray *rays, int count,
+                  TraceLog *log, color *sum);
 
 // Counts a ray of this kind; adds a node for it to log->tree, if a tree is being recorded, with
 // log->current as its parent (returns the node's index, or -1).

@@ -115,9 +115,8 @@ static color TraceSample(const Scene *scene, const RenderSettings *settings, vec
 }
 
 // Samples first .. first + count - 1 of pixel (i, j) (count at most kLanes) at `positions`,
-// added to *sum in turn. Without path tracing their nearest hits are searched for together
-// (FindNearestHitsFromEye: a packet where the kernel can), and each is then shaded as TraceRay
-// would: the same colours, added in the same order.
+// added to *sum in turn. Without path tracing they are traced together (TraceEyeRays: packets
+// where the kernel can), with the same colours, added in the same order.
 static void AddSamples(const Scene *scene, const RenderSettings *settings, const vec2 *positions,
                        int i, int j, int first, int count, TraceLog *log, color *sum) {
     if (scene->shading == SHADING_PATH) {
@@ -126,13 +125,9 @@ static void AddSamples(const Scene *scene, const RenderSettings *settings, const
         return;
     }
     Ray rays[kLanes];
-    RayHit hits[kLanes];
-    bool found[kLanes];
     for (int k = 0; k < count; k++)
         GetCameraRay(&settings->camera, settings->width, settings->height, positions[k], &rays[k]);
-    FindNearestHitsFromEye(scene, settings->methods, rays, count, hits, found);
-    for (int k = 0; k < count; k++)
-        *sum = *sum + TraceFoundEyeRay(scene, settings, &rays[k], found[k], &hits[k], log);
+    TraceEyeRays(scene, settings, rays, count, log, sum);
 }
 
 // Whether samples differ, in any channel clamped to [0, 1], by more than kAdaptiveContrast.

@@ -102,6 +102,7 @@ struct Shading {
     const Scene *scene;
     const RenderSettings *settings;
     TraceLog *log;
+    const KnownShadows *known; // the surface's shadow rays, already cast (TraceEyeRays); or null
 };
 
 // The surface being shaded: the ray that found it, the hit, its material, and where that ray
@@ -115,16 +116,22 @@ struct Surface {
 
 // Whether the segment from the hit point to the light is free of shapes (ShadowRay: every hit
 // with t in (tMin, 1) blocks). Without shapes that could block (Effects), no ray is needed.
+// Its answer may be known already: the same ray, cast with others (TraceEyeRays).
 static bool LightIsVisible(const Shading *sh, const RayHit *hit, const Light *light) {
     const Methods *methods = &sh->settings->methods;
+    size_t l = (size_t)(light - sh->scene->lights.data());
+    ShadowAnswer known =
+        sh->known && l < kKnownLights ? (ShadowAnswer)sh->known->answer[l] : SHADOW_UNKNOWN;
     Ray shadow;
     RayStart start;
-    if (!sh->settings->effects.shadows ||
-        !ShadowRay(hit, light->position, methods, &shadow, &start))
+    if (!sh->settings->effects.shadows || known == SHADOW_NO_RAY ||
+        (known == SHADOW_UNKNOWN && !ShadowRay(hit, light->position, methods, &shadow, &start)))
         return true;
     sh->log->stats.shadow++;
-    if (!sh->log->tree) {
-        bool blocked = AnyHitFrom(sh->scene, *methods, &shadow, &start, 1);
+    if (known != SHADOW_UNKNOWN || !sh->log->tree) {
+        bool blocked = known != SHADOW_UNKNOWN
+                           ? known == SHADOW_BLOCKED
+                           : AnyHitFrom(sh->scene, *methods, &shadow, &start, 1);
         if (sh->settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads it
             sh->log->surfaces = MixSurface(sh->log->surfaces, blocked);
         return !blocked;
@@ -310,14 +317,15 @@ void CountRay(RayKind kind, RayStats *stats) {
 // TraceRay's second half, for a ray recorded as `node` whose nearest hit has been searched for:
 // the colour it brings back, and the tree's record of it.
 static color ShadeNearest(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                          RayChain chain, int node, bool found, RayHit *hit, TraceLog *log) {
+                          RayChain chain, int node, bool found, RayHit *hit,
+                          const KnownShadows *known, TraceLog *log) {
     if (settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads the hash
         log->surfaces = MixSurface(log->surfaces, found ? 2 * hit->index + hit->shape + 1 : 0);
     color result = scene->background;
     if (found) {
         int parent = log->current;
         log->current = node;
-        Shading sh = {scene, settings, log};
+        Shading sh = {scene, settings, log, known};
         Surface surface = {ray, hit, &scene->materials[hit->material], chain};
         result = ShadeHit(&sh, &surface);
         log->current = parent;
@@ -338,12 +346,13 @@ color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind,
     int node = RecordRay(kind, ray, log);
     RayHit hit;
     bool found = FindNearestHitFrom(scene, settings->methods, ray, start, kInfinity, &hit);
-    return ShadeNearest(scene, settings, ray, chain, node, found, &hit, log);
+    return ShadeNearest(scene, settings, ray, chain, node, found, &hit, nullptr, log);
 }
 
 color TraceFoundEyeRay(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                       bool found, RayHit *hit, TraceLog *log) {
+                       bool found, RayHit *hit, const KnownShadows *known, TraceLog *log) {
     CountRay(RAY_PRIMARY, &log->stats);
     int node = RecordRay(RAY_PRIMARY, ray, log);
-    return ShadeNearest(scene, settings, ray, RayChain{1, 1}, node, found, hit, log);
+    return ShadeNearest(scene, settings, ray, RayChain{1, 1}, node, found, hit,
+                        log->tree ? nullptr : known, log);
 }

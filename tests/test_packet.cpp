@@ -16,17 +16,49 @@ static const bool kDouble = sizeof(real) == sizeof(double);
 // What a set of packets found: rays whose answers differed, and packets the kernel took.
 struct PacketCount {
     int differ, taken, packets;
+    int shadows, blocked; // shadow rays asked (each twice), and how many of those were blocked
 };
 
-// One packet, asked three ways against the committed scene and the scene as written.
+// The shadow rays of a packet's hits toward a point (ShadowRay: from the hit's own side, passing
+// over the triangle it leaves where it goes plainly away), and from the same points with a
+// tMin of 1/4 and leaving the shape hit (the second handout's skip): AnyHitsFrom against each
+// ray alone.
+static void AskShadows(const Scene *committed, const Scene *plain, const RayHit *hits,
+                       const bool *found, int count, PacketCount *c) {
+    Ray rays[kLanes], skipping[kLanes];
+    RayStart starts[kLanes], skips[kLanes];
+    int n = 0;
+    for (int r = 0; r < count; r++) {
+        vec3 light = hits[r].point + SafeLength(hits[r].point) * vec3{1, 2, 3} + vec3{1, 2, 3};
+        if (found[r] && ShadowRay(&hits[r], light, &kRobustMethods, &rays[n], &starts[n])) {
+            skipping[n] = {hits[r].point, rays[n].dir};
+            skips[n] = {real(0.25), hits[r].shape, hits[r].index};
+            n++;
+        }
+    }
+    bool blocked[kLanes], skipBlocked[kLanes];
+    AnyHitsFrom(committed, kRobustMethods, rays, starts, n, 1, blocked);
+    AnyHitsFrom(committed, kRobustMethods, skipping, skips, n, 1, skipBlocked);
+    for (int k = 0; k < n; k++) {
+        c->differ += blocked[k] != AnyHitFrom(plain, kRobustMethods, &rays[k], &starts[k], 1);
+        c->differ +=
+            skipBlocked[k] != AnyHitFrom(plain, kRobustMethods, &skipping[k], &skips[k], 1);
+        c->shadows++, c->blocked += blocked[k] + skipBlocked[k];
+    }
+}
+
+// One packet, asked three ways against the committed scene and the scene as written, and its
+// hits' shadow rays two ways.
 static void AskPacket(const Scene *committed, const Scene *plain, const Ray *rays, int count,
                       PacketCount *c) {
     RayShear shears[kLanes];
+    RayStart starts[kLanes];
     RayHit kernel[kLanes], hits[kLanes];
     bool kernelFound[kLanes], found[kLanes];
     for (int r = 0; r < count; r++)
-        ShearRay(&rays[r], &shears[r]);
-    bool taken = HitCommittedPacket(committed, rays, shears, count, kernel, kernelFound);
+        ShearRay(&rays[r], &shears[r]), starts[r] = kFromTheEye;
+    RayPacket packet = {rays, shears, starts, count, kInfinity, false};
+    bool taken = HitCommittedPacket(committed, &packet, kernel, kernelFound);
     FindNearestHitsFromEye(committed, kRobustMethods, rays, count, hits, found);
     c->taken += taken, c->packets++;
     for (int r = 0; r < count; r++) {
@@ -38,6 +70,7 @@ static void AskPacket(const Scene *committed, const Scene *plain, const Ray *ray
             same = same && kernelFound[r] == one && (!one || SameHit(kernel[r], alone));
         c->differ += !same;
     }
+    AskShadows(committed, plain, hits, found, count, c);
 }
 
 // Packets of `count` rays from `eye` (each origin moved by up to `wobble` times the eye's
@@ -55,7 +88,7 @@ static PacketCount CountPacketDifferences(const Scene &scene, const PacketRays *
     Scene committed = scene, plain = scene; // (copies start uncommitted)
     CommitScene(&committed, LAYOUT_LIST);
     TestRng rng = {seed};
-    PacketCount c = {0, 0, 0};
+    PacketCount c = {0, 0, 0, 0, 0};
     real reach = SafeLength(p->centre - p->eye);
     for (int k = 0; k < packets; k++) {
         Ray rays[kLanes];
@@ -78,8 +111,10 @@ static PacketCount CountPacketDifferences(const Scene &scene, const PacketRays *
 
 static void Report(const PacketCount &c, const char *what, bool mustTake) {
     char line[240];
-    snprintf(line, sizeof line, "%s: of %d packets (%d taken by the kernel), %d rays differ", what,
-             c.packets, c.taken, c.differ);
+    snprintf(line, sizeof line,
+             "%s: of %d packets (%d taken by the kernel) and %d shadow rays asked twice (%d "
+             "blocked), %d rays differ",
+             what, c.packets, c.taken, c.shadows, c.blocked, c.differ);
     bool took = !mustTake || !KernelCanBeWide() || c.taken > c.packets / 2;
     CHECK(c.differ == 0 && took, line);
 }
@@ -158,7 +193,9 @@ static void TestMixedAxesFallBack() {
     ShearRay(&rays[0], &shears[0]), ShearRay(&rays[1], &shears[1]);
     RayHit hits[2];
     bool found[2];
-    CHECK(!HitCommittedPacket(&committed, rays, shears, 2, hits, found),
+    RayStart starts[2] = {kFromTheEye, kFromTheEye};
+    RayPacket packet = {rays, shears, starts, 2, kInfinity, false};
+    CHECK(!HitCommittedPacket(&committed, &packet, hits, found),
           "a ray along z and a ray along x: not one packet");
     FindNearestHitsFromEye(&committed, kRobustMethods, rays, 2, hits, found);
     RayHit alone[2];
@@ -171,7 +208,40 @@ static void TestMixedAxesFallBack() {
     CHECK_NEAR(hits[1].t, 4, 4 * kRelTol, "and so does the ray along x");
 }
 
+// Whole renders: scenes traced with packets (committed) and one ray at a time (as written) give
+// the same bytes and the same ray counts. The test scene (mirrors, glass, two lights), and the
+// assignment scene with ten lights in Phong shading, more than the packets keep answers for.
+static void TestSameRenders() {
+    Scene scenes[2];
+    BuildTestScene(&scenes[0]);
+    BuildDefaultScene(&scenes[1]);
+    scenes[1].shading = SHADING_PHONG;
+    for (int i = 0; i < 10; i++)
+        scenes[1].lights.push_back({{real(i) - 5, 6, real(-9 - i)}, {real(0.1), 0, real(0.1)}});
+    for (Scene &scene : scenes) {
+        scene.width = scene.height = 40;
+        Scene committed = scene;
+        CommitScene(&committed, LAYOUT_LIST);
+        for (SampleMethod sampling : {SAMPLES_GRID, SAMPLES_JITTER}) {
+            RenderSettings settings = TestSettings(&scene);
+            settings.samplesPerPixel = 9; // two packets and a part in either build
+            settings.sampling = sampling;
+            Image plainImage, packetImage;
+            RayStats plainStats = {}, packetStats = {};
+            Render(&scene, &settings, &plainImage, &plainStats);
+            Render(&committed, &settings, &packetImage, &packetStats);
+            CHECK(packetImage.pixels == plainImage.pixels &&
+                      packetStats.shadow == plainStats.shadow &&
+                      packetStats.reflection == plainStats.reflection &&
+                      packetStats.refraction == plainStats.refraction &&
+                      packetStats.specularTerms == plainStats.specularTerms,
+                  "packets of samples: the same image bytes and ray counts as one ray at a time");
+        }
+    }
+}
+
 void TestPacket() {
+    TestSameRenders();
     TestPacketsInTheTestScene();
     TestPacketsAtEveryScale();
     TestPacketTies();
