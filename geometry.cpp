@@ -106,6 +106,11 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
     t = ScaleByPowerOfTwo(t, kd - kr);
     if (!(t > tMin && t < tMax)) // scaling back under- or overflowed
         return false;
+    // A point at the very centre is no point of the sphere: f = o - c rounded so far (an origin
+    // some 1e178 radii away, float 1e30) that the ray seemed to pass through the centre. It has
+    // no normal to give, so it is no hit.
+    if (!(MaxComponent(local) > 0))
+        return false;
     hit->t = t;
     vec3 world = ScaleByPowerOfTwo(local, -kr);
     hit->point = s->center + world;

@@ -244,9 +244,10 @@ static const struct {
                 {"--lights", 1},  {"--roulette", 1},  {"--seed", 1}};
 
 // Options that would change nothing in the mode chosen are errors, not silently ignored: a probe
-// asks about one ray (no image, no samples, no threads); --pixel shows the centre ray's tree (the
-// image's size and the depth matter, the samples do not); --compare reads two images; and where
-// the samples go (--aa) only matters when there are several (--spp N, N > 1).
+// asks about one given ray (no image, no samples, no threads, no camera, nothing it leads to);
+// --pixel shows the centre ray's tree (the image's size and the depth matter, the samples do not);
+// --compare reads two images; and where the samples go (--aa) only matters when there are several
+// (--spp N, N > 1).
 static bool CheckUnused(const Options *opt, const std::string &seen, std::string *error) {
     struct Rule {
         bool mode;
@@ -257,11 +258,16 @@ static bool CheckUnused(const Options *opt, const std::string &seen, std::string
         {opt->probeRay || !opt->raysFile.empty(),
          opt->probeRay ? "--ray" : "--rays",
          {"--size", "--spp", "--aa", "--threads", "--depth", "--view", "--stats", "--seed",
-          "--scatter", "--lights", "--roulette"}},
+          "--scatter", "--lights", "--roulette", "--self-hit", "--camera-ray", "--fresnel"}},
         {opt->pixel, "--pixel", {"--spp", "--aa", "--threads", "--stats"}},
         {opt->view, // one ray through each pixel's centre, on one thread
          "--view",
          {"--spp", "--aa", "--threads", "--seed", "--scatter", "--lights", "--roulette"}},
+        // what the eye ray found: no ray leaves a surface, and no glass is shaded
+        {opt->view && opt->viewKind != VIEW_COST && opt->viewKind != VIEW_SHADOW,
+         "--view normal, depth or id",
+         {"--self-hit", "--fresnel"}},
+        {opt->view && opt->viewKind == VIEW_SHADOW, "--view shadow", {"--fresnel"}},
         {opt->compare,
          "--compare",
          {"--size", "--spp", "--aa", "--threads", "--depth", "--methods", "--sphere", "--triangle",

@@ -128,6 +128,10 @@ static void TestBadInput(const std::string &dir) {
         {"--pixel 1 1 --aa jitter", "--aa changes nothing with --pixel"},
         {"--compare a.png b.png --size 10", "--size changes nothing"},
         {"--view cost --spp 4", "--spp changes nothing with --view"},
+        {"--ray 0 0 0 0 0 -1 --fresnel schlick", "--fresnel changes nothing with --ray"},
+        {"--ray 0 0 0 0 0 -1 --camera-ray slides", "--camera-ray changes nothing with --ray"},
+        {"--view normal --self-hit skip", "--self-hit changes nothing with --view normal"},
+        {"--view shadow --fresnel schlick", "--fresnel changes nothing with --view shadow"},
         {"--compare a.png b.png my.scene", "changes nothing with --compare"}};
     for (auto &u : unused)
         CHECK(RunRay(dir, u[0], &err) == 2 && err.find(u[1]) != std::string::npos,

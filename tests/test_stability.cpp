@@ -2,9 +2,12 @@
 //
 // The assignment scene scaled by 1e-4 and 1e4 and moved far from the origin must render the
 // image it renders in place (99.8% of pixels within 2/255); random scenes with degenerate,
-// coincident, tiny and huge shapes must render finite colours everywhere.
+// coincident, tiny and huge shapes must render finite colours everywhere; a sphere seen from
+// absurdly far away must never claim a hit without a normal.
 #include "robust_scenes.h"
 #include "test.h"
+
+static const bool kDouble = sizeof(real) == sizeof(double);
 
 static void TestScaleInvariance() {
     Scene scene;
@@ -102,7 +105,28 @@ static void TestNoNaN() {
               std::to_string(badPixels) + " pixels not finite");
 }
 
+// Rays from ever farther along the diagonal toward the assignment's big sphere, whose line passes
+// 6.5 radii from its centre: wherever o - c rounds so far that a hit is claimed, it is a point
+// on the sphere with a unit normal, never its centre with no normal at all.
+static void TestFarOriginsKeepUnitNormals() {
+    Scene scene;
+    BuildDefaultScene(&scene);
+    int hits = 0, bad = 0;
+    for (double exponent = 1; exponent <= (kDouble ? 300 : 37); exponent += 0.25) {
+        real far = real(std::pow(10.0, exponent));
+        Ray ray = {{far, far, far}, {-1, -1, -1}};
+        RayHit hit;
+        if (!IntersectSphere(&scene.spheres[0], &ray, 0, kInfinity, &hit))
+            continue;
+        hits++;
+        bad += !(std::fabs(Length(hit.normal) - 1) < 1e-3);
+    }
+    CHECK(bad == 0, "of " + std::to_string(hits) + " hits claimed from far away, " +
+                        std::to_string(bad) + " have a normal that is not a unit vector");
+}
+
 void TestStability() {
     TestScaleInvariance();
     TestNoNaN();
+    TestFarOriginsKeepUnitNormals();
 }
