@@ -13,6 +13,7 @@
 // loop gives them, and every tie is broken as it breaks them.
 #pragma once
 #include "kernel_spheres.h"
+#include "plane_lanes.h"
 
 // The packet's rays, lane by lane: what Survivors and MayMeet splat for one ray, here one ray a
 // lane. Lanes past the packet's end repeat its first ray, and their answers are not kept.
@@ -33,6 +34,7 @@ struct PacketSearch {
     int best[kLanes];   // each ray's nearest triangle so far; -1: none (or only a sphere)
     bool found[kLanes]; // whether each ray has hit anything
     RayHit *hits;       // each ray's nearest hit
+    PlaneRays plane[kLanes / kPlaneLanes]; // the rays again, four at a time, for tier 1's lanes
 };
 
 // Ray r has hit a shape: an any-hit search is over for it.
@@ -43,6 +45,20 @@ static RT_INLINE void Found(PacketSearch *p, int r) {
 }
 
 static RT_INLINE void SetLane(Lanes *v, int lane, real x) { (*v)[lane] = x; }
+
+// The rays four at a time for tier 1's lanes (plane_lanes.h): their tMax is set for each
+// triangle, as each ray's limit there.
+static RT_INLINE void FillPlaneRays(PacketSearch *p) {
+    for (int lane = 0; lane < kLanes; lane++) {
+        int r = lane < p->packet->count ? lane : 0;
+        const Ray *ray = &p->packet->rays[r];
+        PlaneRays *q = &p->plane[lane / kPlaneLanes];
+        int k = lane % kPlaneLanes;
+        q->ox[k] = ray->origin.x, q->oy[k] = ray->origin.y, q->oz[k] = ray->origin.z;
+        q->dx[k] = ray->dir.x, q->dy[k] = ray->dir.y, q->dz[k] = ray->dir.z;
+        q->tMin[k] = p->tMin[r], q->tMax[k] = p->tMax[r], q->originPad[k] = OriginPad(ray);
+    }
+}
 
 // The lanes, from each ray's RayShear (renamed origin, shear) and its Ray (origin, direction).
 static RT_INLINE void FillPacketLanes(const PacketSearch *p, PacketLanes *l) {
@@ -132,6 +148,57 @@ static RT_INLINE unsigned RaysSurvive(const TriangleBlock *b, int lane, const Pa
     return live;
 }
 
+// Ray r's answer for triangle `index`, found by RobustPlaneHit or IntersectWatertight or from the
+// lanes: its nearest hit now, if `found`.
+static RT_INLINE void Take(PacketSearch *p, int r, int index, bool found) {
+    if (!found)
+        return;
+    p->hits[r].index = p->best[r] = index;
+    p->tMax[r] = p->hits[r].t;
+    Found(p, r);
+}
+
+// The rays of `rays` (bits) whose edge functions for this triangle have certain signs, each to be
+// tested against `limit[r]`: RobustPlaneHit for each, with tier 1 in lanes for those that share
+// a vector with another (the rest is the scalar function's: PlaneHitRecord for a hit it settles,
+// RobustPlaneHit from the start for a ray it leaves unsure).
+static RT_INLINE void PlaneHits(const Scene *scene, int index, unsigned rays, const real *limit,
+                                PacketSearch *p) {
+    const Triangle *tri = &scene->triangles[index];
+    const TriangleSetUp *setUp = &scene->layout.setUps[index];
+    const RayPacket *q = p->packet;
+    if (!setUp->hasArea) // no plane: RobustPlaneHit finds nothing
+        return;
+    for (int chunk = 0; chunk < kLanes / kPlaneLanes; chunk++) {
+        unsigned mine = rays >> (chunk * kPlaneLanes) & ((1u << kPlaneLanes) - 1);
+        if ((mine & (mine - 1)) == 0) { // one ray or none: the scalar function
+            for (; mine != 0; mine &= mine - 1) {
+                int r = chunk * kPlaneLanes + __builtin_ctz(mine);
+                Take(p, r, index,
+                     RobustPlaneHit(tri, setUp, &q->rays[r], p->tMin[r], limit[r], &p->hits[r]));
+            }
+            continue;
+        }
+        PlaneRays *lanes = &p->plane[chunk];
+        for (unsigned left = mine; left != 0; left &= left - 1) {
+            int k = __builtin_ctz(left);
+            lanes->tMax[k] = limit[chunk * kPlaneLanes + k];
+        }
+        QuickAnswer answer[kPlaneLanes];
+        PlaneT plane[kPlaneLanes];
+        QuickPlaneLanes(tri, setUp, lanes, kPlaneLanes, answer, plane);
+        for (; mine != 0; mine &= mine - 1) {
+            int k = __builtin_ctz(mine), r = chunk * kPlaneLanes + k;
+            const Ray *ray = &q->rays[r];
+            if (answer[k] == PLANE_HIT)
+                Take(p, r, index, PlaneHitRecord(tri, setUp, ray, plane[k], &p->hits[r]));
+            else if (answer[k] == PLANE_UNSURE)
+                Take(p, r, index,
+                     RobustPlaneHit(tri, setUp, ray, p->tMin[r], limit[r], &p->hits[r]));
+        }
+    }
+}
+
 // The triangles, block by block and lane by lane (scene order in a list layout), after the
 // spheres: TestBlocks' survivor step for each ray that survives, with its own interval.
 template <int kz>
@@ -144,26 +211,25 @@ static RT_INLINE void PacketTriangles(const Scene *scene, const PacketLanes *l, 
             int index = b->index[lane];
             if (index < 0)
                 continue;
-            unsigned sure = 0;
+            unsigned sure = 0, planeRays = 0;
             unsigned live = RaysSurvive<kz>(b, lane, l, p->active, &sure);
+            real limit[kLanes];
             for (; live != 0; live &= live - 1) {
                 int r = __builtin_ctz(live);
                 if (index == p->skipTriangle[r])
                     continue;
-                real limit = p->best[r] >= 0 && index < p->best[r] ? NextAfter(p->tMax[r], true)
-                                                                   : p->tMax[r];
-                const Triangle *tri = &scene->triangles[index];
-                const TriangleSetUp *setUp = &scene->layout.setUps[index];
-                RayHit *hit = &p->hits[r];
-                if (!(sure >> r & 1u
-                          ? RobustPlaneHit(tri, setUp, &q->rays[r], p->tMin[r], limit, hit)
-                          : IntersectWatertight(tri, setUp, &q->rays[r], &q->shears[r], p->tMin[r],
-                                                limit, hit)))
-                    continue;
-                hit->index = p->best[r] = index;
-                p->tMax[r] = hit->t;
-                Found(p, r);
+                limit[r] = p->best[r] >= 0 && index < p->best[r] ? NextAfter(p->tMax[r], true)
+                                                                 : p->tMax[r];
+                if (sure >> r & 1u)
+                    planeRays |= 1u << r;
+                else
+                    Take(p, r, index,
+                         IntersectWatertight(&scene->triangles[index], &scene->layout.setUps[index],
+                                             &q->rays[r], &q->shears[r], p->tMin[r], limit[r],
+                                             &p->hits[r]));
             }
+            if (planeRays != 0)
+                PlaneHits(scene, index, planeRays, limit, p);
         }
     }
 }
@@ -172,6 +238,7 @@ static RT_INLINE void PacketTriangles(const Scene *scene, const PacketLanes *l, 
 template <int kz> static RT_INLINE void SearchPacket(const Scene *scene, PacketSearch *p) {
     PacketLanes l;
     FillPacketLanes(p, &l);
+    FillPlaneRays(p);
     PacketSpheres(scene, &l, p);
     PacketTriangles<kz>(scene, &l, p);
 }

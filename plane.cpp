@@ -36,19 +36,8 @@ static dvec3 CrossTerms(dvec3 a, dvec3 b) {
 // is a small function whose values stay in registers.
 #define RT_COLD __attribute__((noinline, cold))
 
-// Unit roundoff of double, and gamma(n) for it (ray.h has them for `real`).
-const double kU = std::numeric_limits<double>::epsilon() / 2;
-static double GammaD(int n) { return n * kU / (1 - n * kU); }
-
-// Tier 2 is taken when tier 1's bound is wider than this share of t: then the hit point
-// o + t d, which inherits the error of t, would sit farther off the surface than a few roundings
-// of its coordinates, and probes would print digits that are not known. 32 u of `real` is twice
-// what tier 1 gives a ray that meets an axis-aligned wall head-on, so ordinary hits stay in tier 1.
-const double kPlainRelativeError = 32 * (double)kUnitRoundoff;
-
-// Tier 1's bound is first order; FirstOrderHolds believes it only while the normal's error and
-// n.d's error are each within this share of what they are errors of (reasoning there).
-const double kFirstOrderShare = 1.0 / 1024;
+// kU, GammaD, kPlainRelativeError and kFirstOrderShare are in ray.h: the kernel's packets
+// (plane_lanes.h) compute tier 1 too.
 
 // ---- double-double arithmetic (tier 2) ------------------------------------------------------
 
@@ -109,11 +98,6 @@ struct PlaneProblem {
     const Triangle *tri;
     const TriangleSetUp *fixed;
     dvec3 a, origin, dir;
-};
-
-// t and a bound on |t - t*|, where t* is the exact t of the exact plane through a, b, c.
-struct PlaneT {
-    double t, error;
 };
 
 // The error bound shared by both tiers, first order in the rounding errors: the numerator
@@ -304,7 +288,6 @@ static bool FindPlaneT(const PlaneProblem *p, Window *w, real tMin, real tMax, P
 // the window, the bound trusted, and t either clearly out of (tMin, tMax) or within
 // kPlainRelativeError of itself. The same operations as FindPlaneT's, in the same order, so the
 // same t, bound and answer; anything else is PLANE_UNSURE, and FindPlaneT starts again.
-enum QuickAnswer { PLANE_MISS, PLANE_HIT, PLANE_UNSURE };
 static RT_INLINE QuickAnswer QuickPlaneT(const PlaneProblem *p, const Ray *ray, real tMin,
                                          real tMax, PlaneT *plane) {
     dvec3 toA = Sub(p->a, p->origin);
@@ -358,6 +341,11 @@ bool RobustPlaneHit(const Triangle *tri, const TriangleSetUp *setUp, const Ray *
         (quick == PLANE_UNSURE && !SlowPlaneT(tri, setUp, ray, tMin, tMax, &plane)))
         return false;
 
+    return PlaneHitRecord(tri, setUp, ray, plane, hit);
+}
+
+bool PlaneHitRecord(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray, PlaneT plane,
+                    RayHit *hit) {
     real t = (real)plane.t;
     vec3 along = t * ray->dir;
     if (!IsFinite(ray->origin + along)) // t finite, but the point beyond the range of numbers

@@ -664,6 +664,35 @@ void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp);
 bool RobustPlaneHit(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray, real tMin,
                     real tMax, RayHit *hit);
 
+// Tier 1 of the plane's t (plane.cpp), whose numbers the kernel's packets share (plane_lanes.h):
+// the unit roundoff of double and gamma(n) for it (Higham 2002, §3.1; Gamma has them for `real`).
+constexpr double kU = std::numeric_limits<double>::epsilon() / 2;
+constexpr double GammaD(int n) { return n * kU / (1 - n * kU); }
+
+// Tier 2 is taken when tier 1's bound is wider than this share of t: then the hit point
+// o + t d, which inherits the error of t, would sit farther off the surface than a few roundings
+// of its coordinates, and probes would print digits that are not known. 32 u of `real` is twice
+// what tier 1 gives a ray that meets an axis-aligned wall head-on, so ordinary hits stay in tier 1.
+const double kPlainRelativeError = 32 * (double)kUnitRoundoff;
+
+// Tier 1's bound is first order; FirstOrderHolds (plane.cpp) believes it only while the normal's
+// error and n.d's error are each within this share of what they are errors of.
+const double kFirstOrderShare = 1.0 / 1024;
+
+// t and a bound on |t - t*|, where t* is the exact t of the exact plane through a, b, c.
+struct PlaneT {
+    double t, error;
+};
+
+// What tier 1 alone makes of a ray (QuickPlaneT, plane.cpp): a miss, a hit, or unsure, for
+// RobustPlaneHit to decide from the start.
+enum QuickAnswer { PLANE_MISS, PLANE_HIT, PLANE_UNSURE };
+
+// RobustPlaneHit's record for the t it settled on: the point o + t d, its error bound, the
+// normal turned toward the ray. False, and *hit untouched, where the point leaves the numbers.
+bool PlaneHitRecord(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray, PlaneT plane,
+                    RayHit *hit);
+
 // What a ray must not count as a hit besides t outside its interval: hits at t <= tMin, and the
 // shape it leaves (index -1: none). Set by LeaveSurface and ShadowRay from the self-hit method;
 // a ray from the eye starts kFromTheEye.

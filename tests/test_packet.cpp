@@ -161,6 +161,29 @@ static void TestPacketsAtEveryScale() {
     }
 }
 
+// Closed boxes, long and turned, seen from inside (the robustness tables' hardest rows): many of
+// their hits are left unsure by tier 1 and decided in double-double, lane by lane.
+static void TestPacketsInLongBoxes() {
+    const double lengths[] = {1e2, 1e8, 1e12};
+    const double floatLengths[] = {1e2, 1e3, 1e4};
+    for (int k = 0; k < 3; k++)
+        for (int turn = 0; turn < 2; turn++) {
+            double length = kDouble ? lengths[k] : floatLengths[k];
+            Scene box = BoxScene(length, turn);
+            vec3 eye = Turn({real(0.3), real(-0.2), real(0.25 * length)}, turn);
+            vec3 far = Turn({0, 0, real(-0.4 * length)}, turn);
+            PacketRays down = {eye, far, real(3), 0, nullptr};
+            PacketRays across = {eye, eye, real(5), real(1e-3), nullptr};
+            char what[120];
+            snprintf(what, sizeof what, "a %s box of length %g, down its length",
+                     turn ? "turned" : "straight", length);
+            Report(CountPacketDifferences(box, &down, 150, kLanes, 120 + k), what, true);
+            snprintf(what, sizeof what, "a %s box of length %g, across it",
+                     turn ? "turned" : "straight", length);
+            Report(CountPacketDifferences(box, &across, 150, kLanes, 130 + k), what, false);
+        }
+}
+
 // Ties: two copies of each triangle and of each sphere, and spheres that touch. The plain loop
 // keeps the earlier shape at equal t; so must every lane.
 static void TestPacketTies() {
@@ -244,6 +267,7 @@ void TestPacket() {
     TestSameRenders();
     TestPacketsInTheTestScene();
     TestPacketsAtEveryScale();
+    TestPacketsInLongBoxes();
     TestPacketTies();
     TestMixedAxesFallBack();
 }

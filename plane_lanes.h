@@ -1,0 +1,94 @@
+// plane_lanes.h -- tier 1 of the plane's t (plane.cpp, QuickPlaneT) for up to four rays of a
+// packet and one triangle at once: the rays that survive the same triangle's edge test in a
+// packet (kernel_packet.h) usually all meet its plane, so its t, error bound and checks are
+// computed in the lanes of one vector of doubles, in double also in the float build, as tier 1
+// computes them. Included by kernel.cpp alone, for its AVX2 copy.
+//
+// Every line is QuickPlaneT's (and PlainError's, WellInside's and FirstOrderHolds') with
+// `PlaneLanes` for `double` and the triangle's numbers in every lane: the same operations in the
+// same order, unfused, so every lane holds the very bits the scalar code computes. Where tier 1
+// settles a ray alone (a hit or a miss), its answer is taken from the lanes; every other ray goes
+// to RobustPlaneHit itself, which starts again.
+#pragma once
+#include "kernel_blocks.h"
+
+#include <cfloat>
+
+typedef double PlaneLanes __attribute__((vector_size(32))); // 4 doubles
+typedef decltype(PlaneLanes() < PlaneLanes()) PlaneMask;    // per lane: all bits set, or none
+const int kPlaneLanes = 4;
+
+static RT_INLINE PlaneLanes Same(double x) { return PlaneLanes{x, x, x, x}; }
+static RT_INLINE PlaneLanes Magnitude(PlaneLanes v) { // fabs, lane by lane: the sign bit cleared
+    typedef long long Bits __attribute__((vector_size(32)));
+    Bits b;
+    memcpy(&b, &v, sizeof b);
+    b &= Bits{} + 0x7fffffffffffffffll;
+    memcpy(&v, &b, sizeof v);
+    return v;
+}
+static RT_INLINE bool Lane(const PlaneMask *m, int lane) { return (*m)[lane] != 0; }
+
+// The rays of the lanes, widened to double as PlaneProblem widens them, with what else tier 1
+// reads of each: its interval and its origin's pad (OriginPad).
+struct PlaneRays {
+    PlaneLanes ox, oy, oz, dx, dy, dz;
+    PlaneLanes tMin, tMax, originPad;
+};
+
+// QuickPlaneT's answer for each of `count` rays (at most kPlaneLanes), with its t and bound
+// where it is PLANE_HIT. The lanes past `count` repeat the first ray.
+static RT_INLINE void QuickPlaneLanes(const Triangle *tri, const TriangleSetUp *setUp,
+                                      const PlaneRays *r, int count, QuickAnswer *answer,
+                                      PlaneT *plane) {
+    const dvec3 n = setUp->n, e = setUp->nError;
+    PlaneLanes toAx = Same(tri->a.x) - r->ox, toAy = Same(tri->a.y) - r->oy;
+    PlaneLanes toAz = Same(tri->a.z) - r->oz;
+    PlaneLanes denominator = Same(n.x) * r->dx + Same(n.y) * r->dy + Same(n.z) * r->dz;
+    PlaneLanes t = (Same(n.x) * toAx + Same(n.y) * toAy + Same(n.z) * toAz) / denominator;
+    PlaneMask finite = Magnitude(t) <= Same(DBL_MAX);
+    // PlainError
+    PlaneLanes absDx = Magnitude(r->dx), absDy = Magnitude(r->dy), absDz = Magnitude(r->dz);
+    PlaneLanes nx = Same(std::fabs(n.x)), ny = Same(std::fabs(n.y)), nz = Same(std::fabs(n.z));
+    PlaneLanes eN =
+        GammaD(4) * (nx * Magnitude(toAx) + ny * Magnitude(toAy) + nz * Magnitude(toAz));
+    PlaneLanes eD = GammaD(3) * (nx * absDx + ny * absDy + nz * absDz);
+    PlaneLanes cx = toAx - t * r->dx, cy = toAy - t * r->dy, cz = toAz - t * r->dz;
+    PlaneLanes absT = Magnitude(t);
+    PlaneLanes error =
+        2 * ((eN + absT * eD +
+              (Same(e.x) * Magnitude(cx) + Same(e.y) * Magnitude(cy) + Same(e.z) * Magnitude(cz))) /
+             Magnitude(denominator)) +
+        GammaD(1) * absT;
+    // WellInside
+    const Box *box = &setUp->box;
+    PlaneLanes pad = 0.5 * ((double)kBoxAllowance * box->size + r->originPad);
+    PlaneLanes qx = r->ox + t * r->dx, qy = r->oy + t * r->dy, qz = r->oz + t * r->dz;
+    PlaneMask inside = (qx >= box->lo[0] - pad) & (qx <= box->hi[0] + pad);
+    inside &= (qy >= box->lo[1] - pad) & (qy <= box->hi[1] + pad);
+    inside &= (qz >= box->lo[2] - pad) & (qz <= box->hi[2] + pad);
+    // FirstOrderHolds
+    PlaneLanes eD2 = eD + (Same(e.x) * absDx + Same(e.y) * absDy + Same(e.z) * absDz);
+    PlaneMask trusted = eD2 <= kFirstOrderShare * Magnitude(denominator);
+    // The answers, in QuickPlaneT's order
+    PlaneLanes zero = Same(0);
+    PlaneMask inRange = (t - 2 * error < r->tMax) & (t + error > zero) & (t + 2 * error > r->tMin);
+    PlaneMask tight = (t - error > zero) & ~(error > kPlainRelativeError * absT);
+    for (int lane = 0; lane < count; lane++) {
+        double tl = t[lane], el = error[lane];
+        if (!Lane(&finite, lane))
+            answer[lane] = PLANE_MISS;
+        else if (!Lane(&inside, lane) || !setUp->normalKnown || !Lane(&trusted, lane))
+            answer[lane] = PLANE_UNSURE;
+        else if (!Lane(&inRange, lane))
+            answer[lane] = PLANE_MISS;
+        else if (!Lane(&tight, lane))
+            answer[lane] = PLANE_UNSURE;
+        else
+            answer[lane] =
+                (real)tl > (real)r->tMin[lane] && (real)tl < (real)r->tMax[lane] && tl > el
+                    ? PLANE_HIT
+                    : PLANE_MISS;
+        plane[lane] = {tl, el};
+    }
+}
