@@ -298,6 +298,14 @@ static void FinishTree(const Path *path, const std::vector<PathNode> &nodes) {
 
 color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, int i,
                 int j, int s, TraceLog *log) {
+    RayHit hit;
+    bool found =
+        FindNearestHitFrom(scene, settings->methods, primary, &kFromTheEye, kInfinity, &hit);
+    return TraceFoundPath(scene, settings, primary, found, &hit, i, j, s, log);
+}
+
+color TraceFoundPath(const Scene *scene, const RenderSettings *settings, const Ray *primary,
+                     bool foundFirst, const RayHit *firstHit, int i, int j, int s, TraceLog *log) {
     PathSample sample = PathKey(settings->path.seed, i, j, s);
     Path path = {scene,    settings,    log,         sample, 0,     {0, 0, 0}, {1, 1, 1},
                  *primary, kFromTheEye, RAY_PRIMARY, 0,      false, {0, 0, 0}};
@@ -309,8 +317,11 @@ color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *p
         if (node >= 0)
             nodes.push_back({node, path.light, path.through});
         RayHit hit;
-        bool found =
-            FindNearestHitFrom(scene, settings->methods, &path.ray, &path.start, kInfinity, &hit);
+        bool found = number == 1 ? foundFirst // the eye ray's, found already
+                                 : FindNearestHitFrom(scene, settings->methods, &path.ray,
+                                                      &path.start, kInfinity, &hit);
+        if (number == 1 && found)
+            hit = *firstHit;
         if (node >= 0 && ((*log->tree)[node].hit = found))
             (*log->tree)[node].record = hit;
         if (!found) {

@@ -343,20 +343,3 @@ bool RobustPlaneHit(const Triangle *tri, const TriangleSetUp *setUp, const Ray *
 
     return PlaneHitRecord(tri, setUp, ray, plane, hit);
 }
-
-bool PlaneHitRecord(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray, PlaneT plane,
-                    RayHit *hit) {
-    real t = (real)plane.t;
-    vec3 along = t * ray->dir;
-    if (!IsFinite(ray->origin + along)) // t finite, but the point beyond the range of numbers
-        return false;
-    SetFaceNormal(ray, setUp->normal, hit); // (a miss leaves *hit as it was)
-    hit->t = t;
-    hit->point = ray->origin + along;
-    real tError = (real)plane.error + Gamma(1) * t;
-    hit->pointError = Gamma(2) * (Abs(hit->point) + Abs(along)) + tError * Abs(ray->dir);
-    hit->material = tri->material;
-    hit->shape = SHAPE_TRIANGLE;
-    hit->awayShare = setUp->awayShare;
-    return true;
-}

@@ -688,10 +688,25 @@ struct PlaneT {
 // RobustPlaneHit to decide from the start.
 enum QuickAnswer { PLANE_MISS, PLANE_HIT, PLANE_UNSURE };
 
-// RobustPlaneHit's record for the t it settled on: the point o + t d, its error bound, the
-// normal turned toward the ray. False, and *hit untouched, where the point leaves the numbers.
-bool PlaneHitRecord(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray, PlaneT plane,
-                    RayHit *hit);
+// RobustPlaneHit's record for the t it settled on: the point o + t d, which lies on the plane to
+// within its bound (the rounding of o + t d itself, and t's error times |d|), the normal turned
+// toward the ray. False, and *hit untouched, where the point leaves the range of numbers.
+inline bool PlaneHitRecord(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray,
+                           PlaneT plane, RayHit *hit) {
+    real t = (real)plane.t;
+    vec3 along = t * ray->dir;
+    if (!IsFinite(ray->origin + along)) // t finite, but the point beyond the range of numbers
+        return false;
+    SetFaceNormal(ray, setUp->normal, hit); // (a miss leaves *hit as it was)
+    hit->t = t;
+    hit->point = ray->origin + along;
+    real tError = (real)plane.error + Gamma(1) * t;
+    hit->pointError = Gamma(2) * (Abs(hit->point) + Abs(along)) + tError * Abs(ray->dir);
+    hit->material = tri->material;
+    hit->shape = SHAPE_TRIANGLE;
+    hit->awayShare = setUp->awayShare;
+    return true;
+}
 
 // What a ray must not count as a hit besides t outside its interval: hits at t <= tMin, and the
 // shape it leaves (index -1: none). Set by LeaveSurface and ShadowRay from the self-hit method;
@@ -797,6 +812,11 @@ bool HitWatertightTriangles(const Triangle *triangles, int n, int skip, const Ra
 // in log->tree if that is set.
 color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, int i,
                 int j, int s, TraceLog *log);
+
+// TracePath for an eye ray whose nearest hit has been found already (FindNearestHitsFromEye):
+// `found`, and *hit where it is.
+color TraceFoundPath(const Scene *scene, const RenderSettings *settings, const Ray *primary,
+                     bool found, const RayHit *hit, int i, int j, int s, TraceLog *log);
 
 // Whether a material gives off light (`emit` above 0 in some channel). (shade.cpp)
 bool Emits(const Material *m);

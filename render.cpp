@@ -115,19 +115,24 @@ static color TraceSample(const Scene *scene, const RenderSettings *settings, vec
 }
 
 // Samples first .. first + count - 1 of pixel (i, j) (count at most kLanes) at `positions`,
-// added to *sum in turn. Without path tracing they are traced together (TraceEyeRays: packets
-// where the kernel can), with the same colours, added in the same order.
+// added to *sum in turn, with the same colours, in the same order, as one by one: their eye rays
+// searched for together (a packet where the kernel can), then traced on as the scene says
+// (TraceEyeRays, TracePath).
 static void AddSamples(const Scene *scene, const RenderSettings *settings, const vec2 *positions,
                        int i, int j, int first, int count, TraceLog *log, color *sum) {
-    if (scene->shading == SHADING_PATH) {
-        for (int k = 0; k < count; k++)
-            *sum = *sum + TraceSample(scene, settings, positions[k], i, j, first + k, log);
-        return;
-    }
     Ray rays[kLanes];
     for (int k = 0; k < count; k++)
         GetCameraRay(&settings->camera, settings->width, settings->height, positions[k], &rays[k]);
-    TraceEyeRays(scene, settings, rays, count, log, sum);
+    if (scene->shading != SHADING_PATH) {
+        TraceEyeRays(scene, settings, rays, count, log, sum);
+        return;
+    }
+    RayHit hits[kLanes];
+    bool found[kLanes];
+    FindNearestHitsFromEye(scene, settings->methods, rays, count, hits, found);
+    for (int k = 0; k < count; k++)
+        *sum = *sum +
+               TraceFoundPath(scene, settings, &rays[k], found[k], &hits[k], i, j, first + k, log);
 }
 
 // Whether samples differ, in any channel clamped to [0, 1], by more than kAdaptiveContrast.

@@ -232,15 +232,60 @@ static void TestMixedAxesFallBack() {
 }
 
 // Whole renders: scenes traced with packets (committed) and one ray at a time (as written) give
-// the same bytes and the same ray counts. The test scene (mirrors, glass, two lights), and the
-// assignment scene with ten lights in Phong shading, more than the packets keep answers for.
-static void TestSameRenders() {
-    Scene scenes[2];
+// the same bytes and the same ray counts. The test scene (mirrors, glass, two lights), the
+// assignment scene with ten lights in Phong shading, more than the packets keep answers for, and
+// the test scene path traced.
+static void SameRenderScenes(Scene scenes[3]) {
     BuildTestScene(&scenes[0]);
     BuildDefaultScene(&scenes[1]);
     scenes[1].shading = SHADING_PHONG;
     for (int i = 0; i < 10; i++)
         scenes[1].lights.push_back({{real(i) - 5, 6, real(-9 - i)}, {real(0.1), 0, real(0.1)}});
+    BuildTestScene(&scenes[2]); // path traced, with an emitting material
+    scenes[2].shading = SHADING_PATH;
+    scenes[2].materials[0].emit = {2, 2, 2};
+}
+
+// A pixel's colour as one sample at a time gives it (the grid's positions, SamplePosition), each
+// traced alone (TraceRay, TracePath): RenderPixel, which traces them in packets, must give these
+// very bits and count the same rays.
+static void TestPixelsAsOneByOne() {
+    Scene scenes[3];
+    SameRenderScenes(scenes);
+    for (Scene &scene : scenes) {
+        CommitScene(&scene, LAYOUT_LIST);
+        RenderSettings settings = TestSettings(&scene);
+        settings.width = settings.height = 16;
+        settings.samplesPerPixel = 9;
+        PlanRender(&scene, &settings);
+        int differ = 0;
+        for (int j = 0; j < 16; j++)
+            for (int i = 0; i < 16; i++) {
+                TraceLog log = {RayStats{}, nullptr, -1, 0};
+                color sum = {0, 0, 0};
+                for (int k = 0; k < 9; k++) {
+                    Ray ray;
+                    GetCameraRay(&settings.camera, 16, 16, SamplePosition(i, j, k, 9), &ray);
+                    sum = sum + (scene.shading == SHADING_PATH
+                                     ? TracePath(&scene, &settings, &ray, i, j, k, &log)
+                                     : TraceRay(&scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye,
+                                                RayChain{1, 1}, &log));
+                }
+                sum = (real(1) / 9) * sum;
+                RayStats stats = {};
+                color pixel = RenderPixel(&scene, &settings, i, j, &stats);
+                differ += !SameBits(pixel, sum) || stats.shadow != log.stats.shadow ||
+                          stats.diffuse != log.stats.diffuse ||
+                          stats.reflection != log.stats.reflection;
+            }
+        CHECK(differ == 0, "of 256 pixels of 9 samples, traced in packets and one by one, " +
+                               std::to_string(differ) + " differ in colour or in rays counted");
+    }
+}
+
+static void TestSameRenders() {
+    Scene scenes[3];
+    SameRenderScenes(scenes);
     for (Scene &scene : scenes) {
         scene.width = scene.height = 40;
         Scene committed = scene;
@@ -257,13 +302,15 @@ static void TestSameRenders() {
                       packetStats.shadow == plainStats.shadow &&
                       packetStats.reflection == plainStats.reflection &&
                       packetStats.refraction == plainStats.refraction &&
-                      packetStats.specularTerms == plainStats.specularTerms,
+                      packetStats.specularTerms == plainStats.specularTerms &&
+                      packetStats.diffuse == plainStats.diffuse,
                   "packets of samples: the same image bytes and ray counts as one ray at a time");
         }
     }
 }
 
 void TestPacket() {
+    TestPixelsAsOneByOne();
     TestSameRenders();
     TestPacketsInTheTestScene();
     TestPacketsAtEveryScale();
