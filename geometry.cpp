@@ -286,15 +286,13 @@ static bool HitPacket(const Scene *scene, Methods methods, RayPacket *packet, Ra
     if (methods.triangle != TRIANGLE_WATERTIGHT || methods.sphere == SPHERE_TEXTBOOK ||
         !LayoutIsCurrent(scene) || !SpheresAreCurrent(scene) || packet->count > kLanes)
         return false;
-    RayShear shears[kLanes];
     real lo = PowerOfTwo(-kDirectionWindow), hi = PowerOfTwo(kDirectionWindow); // ScaleRay's
     for (int r = 0; r < packet->count; r++) {
         real m = MaxComponent(packet->rays[r].dir);
         if (!(m >= lo && m <= hi)) // as ScaleRay: outside it, the ray would be rescaled
             return false;
-        ShearRay(&packet->rays[r], &shears[r]);
     }
-    packet->shears = shears;
+    packet->kz = DominantAxis(packet->rays[0].dir);
     return HitCommittedPacket(scene, packet, hits, found);
 }
 
@@ -303,7 +301,7 @@ bool FindNearestHitsFromEye(const Scene *scene, Methods methods, const Ray *rays
     RayStart starts[kLanes];
     for (int r = 0; r < count && r < kLanes; r++)
         starts[r] = kFromTheEye;
-    RayPacket packet = {rays, nullptr, starts, count, kInfinity, false};
+    RayPacket packet = {rays, starts, count, 2, kInfinity, false};
     if (HitPacket(scene, methods, &packet, hits, found))
         return true;
     for (int r = 0; r < count; r++)
@@ -314,7 +312,7 @@ bool FindNearestHitsFromEye(const Scene *scene, Methods methods, const Ray *rays
 void AnyHitsFrom(const Scene *scene, Methods methods, const Ray *rays, const RayStart *starts,
                  int count, real tMax, bool *blocked) {
     RayHit scratch[kLanes];
-    RayPacket packet = {rays, nullptr, starts, count, tMax, true};
+    RayPacket packet = {rays, starts, count, 2, tMax, true};
     if (HitPacket(scene, methods, &packet, scratch, blocked))
         return;
     for (int r = 0; r < count; r++)

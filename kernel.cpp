@@ -118,7 +118,7 @@ bool HitCommittedSpheres(const Scene *scene, int skip, const Ray *ray, real tMin
 // repeat the one-ray loop's work with more bookkeeping.
 #if RT_DISPATCH
 RT_AVX2 static void PacketAvx2(const Scene *scene, PacketSearch *p) {
-    int kz = p->packet->shears[0].kz;
+    int kz = p->packet->kz;
     if (kz == 0)
         SearchPacket<0>(scene, p);
     else if (kz == 1)
@@ -131,19 +131,14 @@ RT_AVX2 static void PacketAvx2(const Scene *scene, PacketSearch *p) {
 bool HitCommittedPacket(const Scene *scene, const RayPacket *packet, RayHit *hits, bool *found) {
 #if RT_DISPATCH
     int count = packet->count;
-    if (!scene->layout.wide || !scene->layout.nodes.empty() || count < 1 || count > kLanes)
+    if (!scene->layout.wide || !scene->layout.nodes.empty() || count < 1 || count > kLanes ||
+        packet->kz < 0 || packet->kz > 2)
         return false;
-    for (int r = 1; r < count; r++)
-        if (packet->shears[r].kz != packet->shears[0].kz) // one renaming of the axes for all
+    for (int r = 0; r < count; r++)
+        if (DominantAxis(packet->rays[r].dir) != packet->kz) // one renaming of the axes for all
             return false;
     PacketSearch p;
     p.packet = packet, p.active = (1u << count) - 1, p.hits = hits;
-    for (int r = 0; r < count; r++) {
-        const RayStart *start = &packet->starts[r];
-        p.tMin[r] = start->tMin, p.tMax[r] = packet->tMax, p.best[r] = -1, p.found[r] = false;
-        p.skipSphere[r] = start->shape == SHAPE_SPHERE ? start->index : -1;
-        p.skipTriangle[r] = start->shape == SHAPE_TRIANGLE ? start->index : -1;
-    }
     PacketAvx2(scene, &p);
     for (int r = 0; r < count; r++)
         found[r] = p.found[r];

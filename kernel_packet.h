@@ -44,36 +44,43 @@ static RT_INLINE void Found(PacketSearch *p, int r) {
         p->active &= ~(1u << r);
 }
 
-static RT_INLINE void SetLane(Lanes *v, int lane, real x) { (*v)[lane] = x; }
-
-// The rays four at a time for tier 1's lanes (plane_lanes.h): their tMax is set for each
-// triangle, as each ray's limit there.
-static RT_INLINE void FillPlaneRays(PacketSearch *p) {
+// Everything a packet's search starts from, in one pass over its rays: the lanes (the rays
+// coordinate by coordinate, each lane past `count` repeating the first ray), each ray's interval
+// and the shapes it skips, and the rays four at a time for tier 1's lanes (plane_lanes.h), whose
+// tMax is set for each triangle, as each ray's limit there. Then the shear, in lanes, as
+// ShearRay computes it for each ray (watertight.cpp): the axes renamed so that kz, the largest
+// component of every ray's direction, is z, and sx = d[kx] / d[kz], sy = d[ky] / d[kz].
+template <int kz> static RT_INLINE void StartPacket(PacketSearch *p, PacketLanes *l) {
+    const RayPacket *q = p->packet;
+    real v[7][kLanes]; // origin x, y, z, direction x, y, z, d.d
     for (int lane = 0; lane < kLanes; lane++) {
-        int r = lane < p->packet->count ? lane : 0;
-        const Ray *ray = &p->packet->rays[r];
-        PlaneRays *q = &p->plane[lane / kPlaneLanes];
+        int r = lane < q->count ? lane : 0;
+        const Ray *ray = &q->rays[r];
+        const RayStart *start = &q->starts[r];
+        v[0][lane] = ray->origin.x, v[1][lane] = ray->origin.y, v[2][lane] = ray->origin.z;
+        v[3][lane] = ray->dir.x, v[4][lane] = ray->dir.y, v[5][lane] = ray->dir.z;
+        v[6][lane] = Dot(ray->dir, ray->dir);
+        p->tMin[lane] = start->tMin, p->tMax[lane] = q->tMax, p->best[lane] = -1;
+        p->found[lane] = false;
+        p->skipSphere[lane] = start->shape == SHAPE_SPHERE ? start->index : -1;
+        p->skipTriangle[lane] = start->shape == SHAPE_TRIANGLE ? start->index : -1;
+        PlaneRays *w = &p->plane[lane / kPlaneLanes];
         int k = lane % kPlaneLanes;
-        q->ox[k] = ray->origin.x, q->oy[k] = ray->origin.y, q->oz[k] = ray->origin.z;
-        q->dx[k] = ray->dir.x, q->dy[k] = ray->dir.y, q->dz[k] = ray->dir.z;
-        q->tMin[k] = p->tMin[r], q->tMax[k] = p->tMax[r], q->originPad[k] = OriginPad(ray);
+        w->ox[k] = ray->origin.x, w->oy[k] = ray->origin.y, w->oz[k] = ray->origin.z;
+        w->dx[k] = ray->dir.x, w->dy[k] = ray->dir.y, w->dz[k] = ray->dir.z;
+        w->tMin[k] = start->tMin, w->tMax[k] = q->tMax, w->originPad[k] = OriginPad(ray);
     }
+    Lanes *each[7] = {&l->px, &l->py, &l->pz, &l->dx, &l->dy, &l->dz, &l->a};
+    for (int c = 0; c < 7; c++)
+        memcpy(each[c], v[c], sizeof(Lanes));
+    const Lanes *o[3] = {&l->px, &l->py, &l->pz}, *d[3] = {&l->dx, &l->dy, &l->dz};
+    l->ox = *o[(kz + 1) % 3], l->oy = *o[(kz + 2) % 3], l->oz = *o[kz];
+    l->sx = *d[(kz + 1) % 3] / *d[kz], l->sy = *d[(kz + 2) % 3] / *d[kz];
 }
 
-// The lanes, from each ray's RayShear (renamed origin, shear) and its Ray (origin, direction).
-static RT_INLINE void FillPacketLanes(const PacketSearch *p, PacketLanes *l) {
-    for (int lane = 0; lane < kLanes; lane++) {
-        int r = lane < p->packet->count ? lane : 0;
-        const RayShear *k = &p->packet->shears[r];
-        const Ray *ray = &p->packet->rays[r];
-        SetLane(&l->ox, lane, k->origin.x), SetLane(&l->oy, lane, k->origin.y);
-        SetLane(&l->oz, lane, k->origin.z), SetLane(&l->sx, lane, k->sx);
-        SetLane(&l->sy, lane, k->sy);
-        SetLane(&l->px, lane, ray->origin.x), SetLane(&l->py, lane, ray->origin.y);
-        SetLane(&l->pz, lane, ray->origin.z), SetLane(&l->dx, lane, ray->dir.x);
-        SetLane(&l->dy, lane, ray->dir.y), SetLane(&l->dz, lane, ray->dir.z);
-        SetLane(&l->a, lane, Dot(ray->dir, ray->dir));
-    }
+// Ray r's RayShear, for the reference test (IntersectWatertight): the numbers of its lane.
+static RT_INLINE RayShear LaneShear(const PacketLanes *l, int kz, int r) {
+    return {kz, {l->ox[r], l->oy[r], l->oz[r]}, l->sx[r], l->sy[r]};
 }
 
 // LineMissesSphere (geometry.cpp) for sphere (c, r2) and every ray of the packet: the bits of the
@@ -220,13 +227,14 @@ static RT_INLINE void PacketTriangles(const Scene *scene, const PacketLanes *l, 
                     continue;
                 limit[r] = p->best[r] >= 0 && index < p->best[r] ? NextAfter(p->tMax[r], true)
                                                                  : p->tMax[r];
-                if (sure >> r & 1u)
+                if (sure >> r & 1u) {
                     planeRays |= 1u << r;
-                else
-                    Take(p, r, index,
-                         IntersectWatertight(&scene->triangles[index], &scene->layout.setUps[index],
-                                             &q->rays[r], &q->shears[r], p->tMin[r], limit[r],
-                                             &p->hits[r]));
+                    continue;
+                }
+                RayShear shear = LaneShear(l, kz, r);
+                Take(p, r, index,
+                     IntersectWatertight(&scene->triangles[index], &scene->layout.setUps[index],
+                                         &q->rays[r], &shear, p->tMin[r], limit[r], &p->hits[r]));
             }
             if (planeRays != 0)
                 PlaneHits(scene, index, planeRays, limit, p);
@@ -234,11 +242,10 @@ static RT_INLINE void PacketTriangles(const Scene *scene, const PacketLanes *l, 
     }
 }
 
-// The whole search for a packet whose rays share the shear's axis kz.
+// The whole search for a packet whose rays share the shear's axis kz (RayPacket::kz).
 template <int kz> static RT_INLINE void SearchPacket(const Scene *scene, PacketSearch *p) {
     PacketLanes l;
-    FillPacketLanes(p, &l);
-    FillPlaneRays(p);
+    StartPacket<kz>(p, &l);
     PacketSpheres(scene, &l, p);
     PacketTriangles<kz>(scene, &l, p);
 }

@@ -784,6 +784,13 @@ bool ShadowRay(const RayHit *hit, vec3 lightPosition, const Methods *methods, Ra
 
 // ---- watertight.cpp: the watertight triangle test ----------------------------------------------
 
+// The axis of d's largest component (of equal ones, the later axis), which the watertight
+// test's shear turns into z (ShearRay).
+inline int DominantAxis(vec3 d) {
+    vec3 ad = Abs(d);
+    return ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+}
+
 // The per-ray half of the watertight test, shared by every triangle the ray meets: kz, the axis
 // of the direction's largest component, renamed z; the ray origin with its axes renamed
 // (kz + 1, kz + 2, kz); and the shear that turns the direction into the +z axis.
@@ -855,20 +862,21 @@ bool HitCommittedTriangles(const Scene *scene, int skip, const Ray *ray, const R
                            real tMin, real tMax, bool anyHit, RayHit *hit);
 
 // A packet for the kernel: `count` rays (at most kLanes), each searched for as it is (ScaleRay
-// leaves it alone), with its shear, its start (tMin, and the shape it leaves), and one tMax.
+// leaves it alone), with its start (tMin, and the shape it leaves), and one tMax. kz: the axis
+// of every ray's largest direction component (DominantAxis), which the shear makes z.
 struct RayPacket {
     const Ray *rays;
-    const RayShear *shears;
     const RayStart *starts;
     int count;
+    int kz;
     real tMax;
     bool anyHit; // each ray stops at its first hit, as AnyHitFrom does
 };
 
 // HitShapes for every ray of the packet at once: found[r] and hits[r] are, to the bit, what the
 // plain loop gives rays[r] alone (with anyHit, whether it is blocked). False, and nothing
-// written, where the packet cannot be taken: no AVX2, a BVH, or rays whose shears rename the
-// axes differently.
+// written, where the packet cannot be taken: no AVX2, a BVH, or a ray whose DominantAxis is not
+// the packet's kz.
 bool HitCommittedPacket(const Scene *scene, const RayPacket *packet, RayHit *hits, bool *found);
 
 // True if this processor runs the kernel's AVX2 copy (CommitScene sets SceneLayout::wide).

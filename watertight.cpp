@@ -53,8 +53,7 @@ template <int kz> static void ShearRayAxes(const Ray *ray, RayShear *shear) {
 }
 
 void ShearRay(const Ray *ray, RayShear *shear) {
-    vec3 ad = Abs(ray->dir);
-    int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+    int kz = DominantAxis(ray->dir);
     if (kz == 0)
         ShearRayAxes<0>(ray, shear);
     else if (kz == 1)
