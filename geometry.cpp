@@ -287,12 +287,14 @@ static bool HitPacket(const Scene *scene, Methods methods, RayPacket *packet, Ra
         !LayoutIsCurrent(scene) || !SpheresAreCurrent(scene) || packet->count > kLanes)
         return false;
     real lo = PowerOfTwo(-kDirectionWindow), hi = PowerOfTwo(kDirectionWindow); // ScaleRay's
+    packet->kz = DominantAxis(packet->rays[0].dir);
     for (int r = 0; r < packet->count; r++) {
-        real m = MaxComponent(packet->rays[r].dir);
-        if (!(m >= lo && m <= hi)) // as ScaleRay: outside it, the ray would be rescaled
+        vec3 d = packet->rays[r].dir;
+        real m = MaxComponent(d);
+        if (!(m >= lo && m <= hi) ||       // as ScaleRay: outside it, the ray would be rescaled
+            DominantAxis(d) != packet->kz) // one renaming of the axes for all
             return false;
     }
-    packet->kz = DominantAxis(packet->rays[0].dir);
     return HitCommittedPacket(scene, packet, hits, found);
 }
 

@@ -134,9 +134,6 @@ bool HitCommittedPacket(const Scene *scene, const RayPacket *packet, RayHit *hit
     if (!scene->layout.wide || !scene->layout.nodes.empty() || count < 1 || count > kLanes ||
         packet->kz < 0 || packet->kz > 2)
         return false;
-    for (int r = 0; r < count; r++)
-        if (DominantAxis(packet->rays[r].dir) != packet->kz) // one renaming of the axes for all
-            return false;
     PacketSearch p;
     p.packet = packet, p.active = (1u << count) - 1, p.hits = hits;
     PacketAvx2(scene, &p);

@@ -873,10 +873,10 @@ struct RayPacket {
     bool anyHit; // each ray stops at its first hit, as AnyHitFrom does
 };
 
-// HitShapes for every ray of the packet at once: found[r] and hits[r] are, to the bit, what the
-// plain loop gives rays[r] alone (with anyHit, whether it is blocked). False, and nothing
-// written, where the packet cannot be taken: no AVX2, a BVH, or a ray whose DominantAxis is not
-// the packet's kz.
+// HitShapes for every ray of the packet at once, where every ray's DominantAxis is the packet's
+// kz: found[r] and hits[r] are, to the bit, what the plain loop gives rays[r] alone (with
+// anyHit, whether it is blocked). False, and nothing written, where the kernel cannot take a
+// packet: no AVX2, or a BVH.
 bool HitCommittedPacket(const Scene *scene, const RayPacket *packet, RayHit *hits, bool *found);
 
 // True if this processor runs the kernel's AVX2 copy (CommitScene sets SceneLayout::wide).
