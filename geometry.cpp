@@ -278,13 +278,29 @@ bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, con
     return HitShapes(scene, methods, ray, start, tMax, false, hit);
 }
 
-// The packet is taken only where each ray's search would use the committed layout's kernel with
-// the ray as it is: the watertight and stable methods, a current layout, and no ray that
-// ScaleRay would rescale. False where it is not taken.
+// Whether a packet of `count` rays costs less than its rays one by one. The packet tests each
+// shape once for all its rays; one ray tests a block of kLanes shapes at once, and a block's
+// test costs less than kLanes packet tests. So the packet pays only where the blocks would test
+// empty lanes: shapes < count x blocks. The assignment's 5 triangles and 3 spheres fill 3
+// blocks: packets of 3 or 4 rays pay, of 1 or 2 they do not. Measured, with packets at every
+// count: 32 triangles in a list at 1 spp took 3.7 times as long, and a 1,285-triangle list at
+// 4 spp 705.4 million instructions against 617.6.
+static bool PacketPays(const SceneLayout *layout, int count) {
+    size_t shapes = layout->triangleCount + layout->sphereCount;
+    return shapes < (size_t)count * (layout->blocks.size() + layout->sphereBlocks.size());
+}
+
+// The packet is taken only where it pays (PacketsPay), and where no ray is one that ScaleRay
+// would rescale. False where it is not taken.
+bool PacketsPay(const Scene *scene, Methods methods, int count) {
+    return methods.triangle == TRIANGLE_WATERTIGHT && methods.sphere != SPHERE_TEXTBOOK &&
+           LayoutIsCurrent(scene) && SpheresAreCurrent(scene) && scene->layout.wide &&
+           scene->layout.nodes.empty() && count <= kLanes && PacketPays(&scene->layout, count);
+}
+
 static bool HitPacket(const Scene *scene, Methods methods, RayPacket *packet, RayHit *hits,
                       bool *found) {
-    if (methods.triangle != TRIANGLE_WATERTIGHT || methods.sphere == SPHERE_TEXTBOOK ||
-        !LayoutIsCurrent(scene) || !SpheresAreCurrent(scene) || packet->count > kLanes)
+    if (!PacketsPay(scene, methods, packet->count))
         return false;
     real lo = PowerOfTwo(-kDirectionWindow), hi = PowerOfTwo(kDirectionWindow); // ScaleRay's
     packet->kz = DominantAxis(packet->rays[0].dir);

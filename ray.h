@@ -730,6 +730,11 @@ bool AnyHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real
 bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
                         real tMax, RayHit *hit);
 
+// Whether a packet of `count` rays can be taken and pays (geometry.cpp, PacketPays): the
+// watertight and stable methods, a current list layout tested in AVX2 (the kernel takes no
+// packet otherwise), and blocks with empty lanes for the packet to fill.
+bool PacketsPay(const Scene *scene, Methods methods, int count);
+
 // FindNearestHitFrom for `count` rays from the eye (kFromTheEye, tMax infinity), at most kLanes:
 // found[r] and hits[r] are exactly what it gives rays[r]. A pixel's samples, tested together
 // where the kernel can (HitCommittedPacket: then true), one by one where it cannot.

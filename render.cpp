@@ -120,6 +120,11 @@ static color TraceSample(const Scene *scene, const RenderSettings *settings, vec
 // (TraceEyeRays, TracePath).
 static void AddSamples(const Scene *scene, const RenderSettings *settings, const vec2 *positions,
                        int i, int j, int first, int count, TraceLog *log, color *sum) {
+    if (!PacketsPay(scene, settings->methods, count)) { // one by one
+        for (int k = 0; k < count; k++)
+            *sum = *sum + TraceSample(scene, settings, positions[k], i, j, first + k, log);
+        return;
+    }
     Ray rays[kLanes];
     for (int k = 0; k < count; k++)
         GetCameraRay(&settings->camera, settings->width, settings->height, positions[k], &rays[k]);

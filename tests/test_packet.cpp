@@ -62,7 +62,7 @@ static void AskPacket(const Scene *committed, const Scene *plain, const Ray *ray
     RayPacket packet = {rays, starts, count, DominantAxis(rays[0].dir), kInfinity, false};
     bool taken = oneAxis && HitCommittedPacket(committed, &packet, kernel, kernelFound);
     bool packed = FindNearestHitsFromEye(committed, kRobustMethods, rays, count, hits, found);
-    c->differ += packed != taken; // the packet taken exactly where the kernel can take it
+    c->differ += packed && !taken; // a packet only where the kernel can take one
     c->taken += taken, c->packets++;
     for (int r = 0; r < count; r++) {
         RayHit alone;
