@@ -732,7 +732,8 @@ bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, con
 
 // Whether a packet of `count` rays can be taken and pays (geometry.cpp, PacketPays): the
 // watertight and stable methods, a current list layout tested in AVX2 (the kernel takes no
-// packet otherwise), and blocks with empty lanes for the packet to fill.
+// packet otherwise), two rays or more, and a scene small enough (at most 64 shapes) that each
+// ray's own set-up outweighs what the blocks save.
 bool PacketsPay(const Scene *scene, Methods methods, int count);
 
 // FindNearestHitFrom for `count` rays from the eye (kFromTheEye, tMax infinity), at most kLanes:

@@ -245,15 +245,20 @@ color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int
     } else {
         bool jitter = settings->sampling != SAMPLES_GRID && n > 1;
         GridCell cell = FindCell(0, n);
-        for (int first = 0; first < n; first += kLanes) {
-            int count = std::min(kLanes, n - first);
+        // kLanes samples at a time where packets pay (PacketsPay), else one at a time
+        int group = n > 1 && PacketsPay(scene, settings->methods, std::min(n, kLanes)) ? kLanes : 1;
+        for (int first = 0; first < n; first += group) {
+            int count = std::min(group, n - first);
             vec2 p[kLanes];
             for (int s = first; s < first + count; s++) {
                 cell = NextCell(&cell, s, n);
                 p[s - first] =
                     jitter ? JitterPosition(i, j, &cell, s, 0) : GridPosition(i, j, &cell, s);
             }
-            AddSamples(scene, settings, p, i, j, first, count, &log, &result);
+            if (count == 1)
+                result = result + TraceSample(scene, settings, p[0], i, j, first, &log);
+            else
+                AddSamples(scene, settings, p, i, j, first, count, &log, &result);
         }
         result = (real(1) / n) * result;
     }
