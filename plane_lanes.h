@@ -30,17 +30,18 @@ static RT_INLINE PlaneLanes Magnitude(PlaneLanes v) { // fabs, lane by lane: the
 static RT_INLINE bool Lane(const PlaneMask *m, int lane) { return (*m)[lane] != 0; }
 
 // The rays of the lanes, widened to double as PlaneProblem widens them, with what else tier 1
-// reads of each: its interval and its origin's pad (OriginPad).
+// reads of each: its tMin and its origin's pad (OriginPad). (Its tMax, the limit for the
+// triangle at hand, comes with each call.)
 struct PlaneRays {
     PlaneLanes ox, oy, oz, dx, dy, dz;
-    PlaneLanes tMin, tMax, originPad;
+    PlaneLanes tMin, originPad;
 };
 
-// QuickPlaneT's answer for each of `count` rays (at most kPlaneLanes), with its t and bound
-// where it is PLANE_HIT. The lanes past `count` repeat the first ray.
+// QuickPlaneT's answer for each of `count` rays (at most kPlaneLanes) against tMax, with its t
+// and bound where it is PLANE_HIT. The lanes past `count` repeat the first ray.
 static RT_INLINE void QuickPlaneLanes(const Triangle *tri, const TriangleSetUp *setUp,
-                                      const PlaneRays *r, int count, QuickAnswer *answer,
-                                      PlaneT *plane) {
+                                      const PlaneRays *r, const PlaneLanes *tMax, int count,
+                                      QuickAnswer *answer, PlaneT *plane) {
     const dvec3 n = setUp->n, e = setUp->nError;
     PlaneLanes toAx = Same(tri->a.x) - r->ox, toAy = Same(tri->a.y) - r->oy;
     PlaneLanes toAz = Same(tri->a.z) - r->oz;
@@ -72,7 +73,7 @@ static RT_INLINE void QuickPlaneLanes(const Triangle *tri, const TriangleSetUp *
     PlaneMask trusted = eD2 <= kFirstOrderShare * Magnitude(denominator);
     // The answers, in QuickPlaneT's order
     PlaneLanes zero = Same(0);
-    PlaneMask inRange = (t - 2 * error < r->tMax) & (t + error > zero) & (t + 2 * error > r->tMin);
+    PlaneMask inRange = (t - 2 * error < *tMax) & (t + error > zero) & (t + 2 * error > r->tMin);
     PlaneMask tight = (t - error > zero) & ~(error > kPlainRelativeError * absT);
     for (int lane = 0; lane < count; lane++) {
         double tl = t[lane], el = error[lane];
@@ -86,7 +87,7 @@ static RT_INLINE void QuickPlaneLanes(const Triangle *tri, const TriangleSetUp *
             answer[lane] = PLANE_UNSURE;
         else
             answer[lane] =
-                (real)tl > (real)r->tMin[lane] && (real)tl < (real)r->tMax[lane] && tl > el
+                (real)tl > (real)r->tMin[lane] && (real)tl < (real)(*tMax)[lane] && tl > el
                     ? PLANE_HIT
                     : PLANE_MISS;
         plane[lane] = {tl, el};
