@@ -278,67 +278,6 @@ bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, con
     return HitShapes(scene, methods, ray, start, tMax, false, hit);
 }
 
-// Whether a packet of `count` rays costs less than its rays one by one. A packet tests each
-// shape once for all its rays, where one ray tests a block of kLanes shapes at once, and a
-// packet's test of one shape costs a little more than one ray's test of a block; what the packet
-// saves is each ray's own set-up and the blocks' empty lanes, which matter in small scenes.
-// Measured (callgrind, one thread, 4 to 16 spp), with packets against without: the assignment's
-// 8 shapes, the Cornell box's 14 and a 50-triangle list gain (by 11%, 3% and 2%); a 162-triangle
-// list loses 8%, the test scene's 139 triangles as a list 5%, a 1,285-triangle list 14%; and a
-// packet of one ray is one ray's search with more bookkeeping. Hence two rays or more, and at
-// most kPacketShapes shapes.
-const size_t kPacketShapes = 64;
-static bool PacketPays(const SceneLayout *layout, int count) {
-    return count >= 2 && layout->triangleCount + layout->sphereCount <= kPacketShapes;
-}
-
-// The packet is taken only where it pays (PacketsPay), and where no ray is one that ScaleRay
-// would rescale. False where it is not taken.
-bool PacketsPay(const Scene *scene, Methods methods, int count) {
-    return methods.triangle == TRIANGLE_WATERTIGHT && methods.sphere != SPHERE_TEXTBOOK &&
-           LayoutIsCurrent(scene) && SpheresAreCurrent(scene) && scene->layout.wide &&
-           scene->layout.nodes.empty() && count <= kLanes && PacketPays(&scene->layout, count);
-}
-
-static bool HitPacket(const Scene *scene, Methods methods, RayPacket *packet, RayHit *hits,
-                      bool *found) {
-    if (!PacketsPay(scene, methods, packet->count))
-        return false;
-    real lo = PowerOfTwo(-kDirectionWindow), hi = PowerOfTwo(kDirectionWindow); // ScaleRay's
-    packet->kz = DominantAxis(packet->rays[0].dir);
-    for (int r = 0; r < packet->count; r++) {
-        vec3 d = packet->rays[r].dir;
-        real m = MaxComponent(d);
-        if (!(m >= lo && m <= hi) ||       // as ScaleRay: outside it, the ray would be rescaled
-            DominantAxis(d) != packet->kz) // one renaming of the axes for all
-            return false;
-    }
-    return HitCommittedPacket(scene, packet, hits, found);
-}
-
-bool FindNearestHitsFromEye(const Scene *scene, Methods methods, const Ray *rays, int count,
-                            RayHit *hits, bool *found) {
-    RayStart starts[kLanes];
-    for (int r = 0; r < count && r < kLanes; r++)
-        starts[r] = kFromTheEye;
-    RayPacket packet = {rays, starts, count, 2, kInfinity, false};
-    if (HitPacket(scene, methods, &packet, hits, found))
-        return true;
-    for (int r = 0; r < count; r++)
-        found[r] = FindNearestHitFrom(scene, methods, &rays[r], &kFromTheEye, kInfinity, &hits[r]);
-    return false;
-}
-
-void AnyHitsFrom(const Scene *scene, Methods methods, const Ray *rays, const RayStart *starts,
-                 int count, real tMax, bool *blocked) {
-    RayHit scratch[kLanes];
-    RayPacket packet = {rays, starts, count, 2, tMax, true};
-    if (HitPacket(scene, methods, &packet, scratch, blocked))
-        return;
-    for (int r = 0; r < count; r++)
-        blocked[r] = AnyHitFrom(scene, methods, &rays[r], &starts[r], tMax);
-}
-
 bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
                 real tMax) {
     RayHit scratch;

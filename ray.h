@@ -730,22 +730,6 @@ bool AnyHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real
 bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
                         real tMax, RayHit *hit);
 
-// Whether a packet of `count` rays can be taken and pays (geometry.cpp, PacketPays): the
-// watertight and stable methods, a current list layout tested in AVX2 (the kernel takes no
-// packet otherwise), two rays or more, and a scene small enough (at most 64 shapes) that each
-// ray's own set-up outweighs what the blocks save.
-bool PacketsPay(const Scene *scene, Methods methods, int count);
-
-// FindNearestHitFrom for `count` rays from the eye (kFromTheEye, tMax infinity), at most kLanes:
-// found[r] and hits[r] are exactly what it gives rays[r]. A pixel's samples, tested together
-// where the kernel can (HitCommittedPacket: then true), one by one where it cannot.
-bool FindNearestHitsFromEye(const Scene *scene, Methods methods, const Ray *rays, int count,
-                            RayHit *hits, bool *found);
-
-// AnyHitFrom for `count` rays (at most kLanes), each from its start, with one tMax: blocked[r] is
-// exactly what it gives rays[r]. Shadow rays toward one light, tested together where they can be.
-void AnyHitsFrom(const Scene *scene, Methods methods, const Ray *rays, const RayStart *starts,
-                 int count, real tMax, bool *blocked);
 bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
                 real tMax);
 
@@ -959,15 +943,6 @@ struct KnownShadows {
 color TraceFoundEyeRay(const Scene *scene, const RenderSettings *settings, const Ray *ray,
                        bool found, RayHit *hit, const KnownShadows *known, TraceLog *log);
 
-// ---- packet.cpp: a pixel's samples searched for together ----------------------------------
-
-// TraceRay for `count` primary rays (at most kLanes), their colours added to *sum in turn: the
-// same colours, counts and sums, found faster. Their nearest hits are searched for together
-// (FindNearestHitsFromEye), and where that took a packet, so are their surfaces' shadow rays
-// toward each light (AnyHitsFrom).
-void TraceEyeRays(const Scene *scene, const RenderSettings *settings, const Ray *rays, int count,
-                  TraceLog *log, color *sum);
-
 // Counts a ray of this kind; adds a node for it to log->tree, if a tree is being recorded, with
 // log->current as its parent (returns the node's index, or -1).
 void CountRay(RayKind kind, RayStats *stats);
@@ -984,6 +959,32 @@ real FresnelReflectance(real cosI, real eta);
 // Schlick's approximation of it, R0 + (1 - R0)(1 - cos(i))^5 with R0 = ((1 - eta)/(1 + eta))^2, as
 // Ray Tracing in One Weekend computes it; 1 under total internal reflection.
 real SchlickReflectance(real cosI, real eta);
+
+// ---- packet.cpp: a pixel's samples searched for together ----------------------------------
+
+// Whether a packet of `count` rays can be taken and pays (PacketPays): the
+// watertight and stable methods, a current list layout tested in AVX2 (the kernel takes no
+// packet otherwise), two rays or more, and a scene small enough (at most 64 shapes) that each
+// ray's own set-up outweighs what the blocks save.
+bool PacketsPay(const Scene *scene, Methods methods, int count);
+
+// FindNearestHitFrom for `count` rays from the eye (kFromTheEye, tMax infinity), at most kLanes:
+// found[r] and hits[r] are exactly what it gives rays[r]. A pixel's samples, tested together
+// where the kernel can (HitCommittedPacket: then true), one by one where it cannot.
+bool FindNearestHitsFromEye(const Scene *scene, Methods methods, const Ray *rays, int count,
+                            RayHit *hits, bool *found);
+
+// AnyHitFrom for `count` rays (at most kLanes), each from its start, with one tMax: blocked[r] is
+// exactly what it gives rays[r]. Shadow rays toward one light, tested together where they can be.
+void AnyHitsFrom(const Scene *scene, Methods methods, const Ray *rays, const RayStart *starts,
+                 int count, real tMax, bool *blocked);
+
+// TraceRay for `count` primary rays (at most kLanes), their colours added to *sum in turn: the
+// same colours, counts and sums, found faster. Their nearest hits are searched for together
+// (FindNearestHitsFromEye), and where that took a packet, so are their surfaces' shadow rays
+// toward each light (AnyHitsFrom).
+void TraceEyeRays(const Scene *scene, const RenderSettings *settings, const Ray *rays, int count,
+                  TraceLog *log, color *sum);
 
 // ---- camera.cpp: the cameras; render.cpp: the render loop -----------------------------------
 
