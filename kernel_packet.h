@@ -85,17 +85,10 @@ static RT_INLINE RayShear LaneShear(const PacketLanes *l, int kz, int r) {
 // LineMissesSphere (geometry.cpp) for sphere (c, r2) and every ray of the packet: the bits of the
 // rays whose line may meet it. MayMeet's lines, with the rays in the lanes.
 static RT_INLINE unsigned RaysMayMeet(vec3 c, real r2, const PacketLanes *l) {
-    Lanes cx, cy, cz, r2s, zero, tiny;
-    Fill(&cx, c.x), Fill(&cy, c.y), Fill(&cz, c.z), Fill(&r2s, r2), Fill(&zero, 0);
-    Fill(&tiny, std::numeric_limits<real>::min());
-    Lanes fx = l->px - cx, fy = l->py - cy, fz = l->pz - cz; // f = o - c
-    Lanes ux = fy * l->dz - fz * l->dy;                      // f x d, as Cross writes it
-    Lanes uy = fz * l->dx - fx * l->dz;
-    Lanes uz = fx * l->dy - fy * l->dx;
-    Lanes ar2 = l->a * r2s;
-    Lanes disc = ar2 - (ux * ux + uy * uy + uz * uz); // Dot: (x x + y y) + z z
-    LaneMask misses = (disc < zero) & (ar2 >= tiny);
-    return ~LaneBits(&misses);
+    Lanes centre[3], r2s;
+    Fill(&centre[0], c.x), Fill(&centre[1], c.y), Fill(&centre[2], c.z), Fill(&r2s, r2);
+    const Lanes o[3] = {l->px, l->py, l->pz}, d[3] = {l->dx, l->dy, l->dz};
+    return ~MissingLanes(o, centre, d, &l->a, &r2s);
 }
 
 // The spheres, in scene order (HitLiveSpheres for each ray): only sphere blocks' lanes that hold

@@ -19,7 +19,6 @@ struct SphereLaneRay {
     Lanes ox, oy, oz; // the origin
     Lanes dx, dy, dz; // the direction
     Lanes a;          // A = d.d, rounded as Dot rounds it
-    Lanes tiny;       // the least normal number: A r^2 below it is not trusted
 };
 
 // x in every lane, written whole (Splat writes lane by lane, which GCC 12 takes for a read of
@@ -36,24 +35,33 @@ static RT_INLINE void SplatSphereRay(const Ray *ray, SphereLaneRay *r) {
     Fill(&r->ox, ray->origin.x), Fill(&r->oy, ray->origin.y), Fill(&r->oz, ray->origin.z);
     Fill(&r->dx, d.x), Fill(&r->dy, d.y), Fill(&r->dz, d.z);
     Fill(&r->a, Dot(d, d));
-    Fill(&r->tiny, std::numeric_limits<real>::min());
+}
+
+// The lanes whose line misses its sphere, as bits (lane i at bit i): LineMissesSphere's lines
+// with `Lanes` for `real`, for each lane's origin o, centre c, direction d, A = d.d and r^2 (a
+// block's spheres for one ray here, one sphere for a packet's rays in kernel_packet.h).
+static RT_INLINE unsigned MissingLanes(const Lanes o[3], const Lanes c[3], const Lanes d[3],
+                                       const Lanes *a, const Lanes *r2) {
+    Lanes zero, tiny;
+    Fill(&zero, 0), Fill(&tiny, std::numeric_limits<real>::min());
+    Lanes fx = o[0] - c[0], fy = o[1] - c[1], fz = o[2] - c[2]; // f = o - c
+    Lanes ux = fy * d[2] - fz * d[1];                           // f x d, as Cross writes it
+    Lanes uy = fz * d[0] - fx * d[2];
+    Lanes uz = fx * d[1] - fy * d[0];
+    Lanes ar2 = *a * *r2;
+    Lanes disc = ar2 - (ux * ux + uy * uy + uz * uz); // Dot: (x x + y y) + z z
+    LaneMask misses = (disc < zero) & (ar2 >= tiny);
+    return LaneBits(&misses);
 }
 
 // The lanes of block b whose line may meet the ray, as bits (lane i at bit i): those for which
 // LineMissesSphere is false, and only lanes that hold a sphere.
 static RT_INLINE unsigned MayMeet(const SphereBlock *b, const SphereLaneRay *r) {
-    Lanes cx, cy, cz, r2, zero;
-    Load(&cx, b->center[0]), Load(&cy, b->center[1]), Load(&cz, b->center[2]);
+    Lanes c[3], r2;
+    Load(&c[0], b->center[0]), Load(&c[1], b->center[1]), Load(&c[2], b->center[2]);
     Load(&r2, b->r2);
-    Fill(&zero, 0);
-    Lanes fx = r->ox - cx, fy = r->oy - cy, fz = r->oz - cz; // f = o - c
-    Lanes ux = fy * r->dz - fz * r->dy;                      // f x d, as Cross writes it
-    Lanes uy = fz * r->dx - fx * r->dz;
-    Lanes uz = fx * r->dy - fy * r->dx;
-    Lanes ar2 = r->a * r2;
-    Lanes disc = ar2 - (ux * ux + uy * uy + uz * uz); // Dot: (x x + y y) + z z
-    LaneMask misses = (disc < zero) & (ar2 >= r->tiny);
-    return ~LaneBits(&misses) & b->filled;
+    const Lanes o[3] = {r->ox, r->oy, r->oz}, d[3] = {r->dx, r->dy, r->dz};
+    return ~MissingLanes(o, c, d, &r->a, &r2) & b->filled;
 }
 
 // The same lanes one by one, with LineMissesSphere's scalar operations in the same order; only

@@ -160,3 +160,8 @@ void AddOctasphere(Scene *scene, vec3 c, real r, int level) {
     for (Triangle t : faces)
         scene->triangles.push_back({c + r * t.a, c + r * t.b, c + r * t.c, 0});
 }
+
+double ClaimedBoxLength(int k) {
+    const double lengths[] = {1e2, 1e8, 1e12}, floatLengths[] = {1e2, 1e3, 1e4};
+    return sizeof(real) == sizeof(double) ? lengths[k] : floatLengths[k];
+}

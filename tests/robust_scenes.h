@@ -12,6 +12,10 @@ vec3 Turn(vec3 p, bool turn);
 // An empty scene with one white matte material, "wall".
 Scene WallScene();
 
+// The lengths L of the closed boxes the robustness tables claim, k = 0, 1, 2: 1e2, 1e8 and 1e12
+// (float: 1e2, 1e3 and 1e4).
+double ClaimedBoxLength(int k);
+
 // A closed box [-2, 2] x [-1.5, 1.5] x [-L/2, L/2] of 12 triangles, two per face, faces in order
 // (triangles 2f and 2f + 1 make face f), turned or not.
 Scene BoxScene(double length, bool turn);

@@ -168,11 +168,9 @@ static void TestPassOverIsExact() {
 
 // Closed boxes, long and turned (the robustness tables' hardest rows), in every layout.
 static void TestSameHitsInLongBoxes() {
-    const double lengths[] = {1e2, 1e8, 1e12};
-    const double floatLengths[] = {1e2, 1e3, 1e4};
     for (int k = 0; k < 3; k++)
         for (int turn = 0; turn < 2; turn++) {
-            double length = kDouble ? lengths[k] : floatLengths[k];
+            double length = ClaimedBoxLength(k);
             Scene box = BoxScene(length, turn);
             char what[120];
             snprintf(what, sizeof what, "a 4 x 3 x %g box%s: same bits", length,

@@ -167,11 +167,9 @@ static void TestPacketsAtEveryScale() {
 // Closed boxes, long and turned, seen from inside (the robustness tables' hardest rows): many of
 // their hits are left unsure by tier 1 and decided in double-double, lane by lane.
 static void TestPacketsInLongBoxes() {
-    const double lengths[] = {1e2, 1e8, 1e12};
-    const double floatLengths[] = {1e2, 1e3, 1e4};
     for (int k = 0; k < 3; k++)
         for (int turn = 0; turn < 2; turn++) {
-            double length = kDouble ? lengths[k] : floatLengths[k];
+            double length = ClaimedBoxLength(k);
             Scene box = BoxScene(length, turn);
             vec3 eye = Turn({real(0.3), real(-0.2), real(0.25 * length)}, turn);
             vec3 far = Turn({0, 0, real(-0.4 * length)}, turn);
