@@ -47,9 +47,9 @@ static RT_INLINE void Found(PacketSearch *p, int r) {
 // Everything a packet's search starts from, in one pass over its rays: the lanes (the rays
 // coordinate by coordinate, each lane past `count` repeating the first ray), each ray's interval
 // and the shapes it skips, and the rays four at a time for tier 1's lanes (plane_lanes.h). Then
-// the shear, in lanes, as
-// ShearRay computes it for each ray (watertight.cpp): the axes renamed so that kz, the largest
-// component of every ray's direction, is z, and sx = d[kx] / d[kz], sy = d[ky] / d[kz].
+// the shear, in lanes, as ShearRay computes it for each ray (watertight.cpp): the axes renamed
+// so that kz, the largest component of every ray's direction, is z, and sx = d[kx] / d[kz],
+// sy = d[ky] / d[kz].
 template <int kz> static RT_INLINE void StartPacket(PacketSearch *p, PacketLanes *l) {
     const RayPacket *q = p->packet;
     for (int lane = 0; lane < kLanes; lane++) {
