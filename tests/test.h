@@ -35,7 +35,8 @@ inline real Uniform(TestRng *rng) { // in [0, 1)
     return real((rng->state >> 40) * (1.0 / 16777216.0));
 }
 
-// A default render configuration for tests: the scene's size, 1 spp, its depth, one thread.
+// A default render configuration for tests: the scene's size, 1 spp, its depth, one thread, the
+// path tracer's defaults.
 RenderSettings TestSettings(const Scene *scene);
 
 // A matte material of colour kd, and a mirror reflecting the fraction k (test_shade.cpp).

@@ -49,6 +49,7 @@ RenderSettings TestSettings(const Scene *scene) {
     s.threads = 1;
     s.methods = kRobustMethods;
     s.showProgress = false;
+    s.path = {}; // the path tracer's defaults (cosine sampling, MIS, roulette, seed 0)
     PlanRender(scene, &s);
     return s;
 }
