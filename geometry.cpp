@@ -134,7 +134,7 @@ struct ScaledRay {
 };
 
 static bool ScaleRay(const Ray *ray, real tMin, real tMax, ScaledRay *s) {
-    if (WithinWindow(MaxComponent(ray->dir), kDirectionWindow)) { // s->ray is not needed
+    if (SearchedAsIs(ray->dir)) { // s->ray is not needed
         s->k = 0, s->tMin = tMin, s->tMax = tMax;
         return true;
     }

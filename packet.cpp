@@ -39,12 +39,10 @@ static bool HitPacket(const Scene *scene, Methods methods, RayPacket *packet, Ra
                       bool *found) {
     if (!PacketsPay(scene, methods, packet->count))
         return false;
-    real lo = PowerOfTwo(-kDirectionWindow), hi = PowerOfTwo(kDirectionWindow); // ScaleRay's
     packet->kz = DominantAxis(packet->rays[0].dir);
     for (int r = 0; r < packet->count; r++) {
         vec3 d = packet->rays[r].dir;
-        real m = MaxComponent(d);
-        if (!(m >= lo && m <= hi) ||       // as ScaleRay: outside it, the ray would be rescaled
+        if (!SearchedAsIs(d) ||            // else ScaleRay would rescale it
             DominantAxis(d) != packet->kz) // one renaming of the axes for all
             return false;
     }

@@ -547,6 +547,10 @@ inline bool WithinWindow(real m, int window) {
     return m >= PowerOfTwo(-window) && m <= PowerOfTwo(window);
 }
 
+// Whether a ray's direction is searched for as it is: inside the direction window, which
+// ScaleRay (geometry.cpp) leaves alone, and which the packets (packet.cpp) require.
+inline bool SearchedAsIs(vec3 dir) { return WithinWindow(MaxComponent(dir), kDirectionWindow); }
+
 // The power of two that brings v's largest component into [1, 2): v * 2^UnitExponent(v). 0 for
 // a zero or non-finite v (nothing to rescale).
 inline int UnitExponent(vec3 v) {
