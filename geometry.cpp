@@ -235,17 +235,17 @@ static bool HitShapes(const Scene *scene, Methods methods, const Ray *given, con
     if (found && anyHit)
         return ScaleBack(&s, start->tMin, tMax, hit);
     if (methods.triangle == TRIANGLE_WATERTIGHT) {
-        RayShear shear; // the per-ray half of the test, once for all the triangles
-        ShearRay(ray, &shear);
-        if (LayoutIsCurrent(scene)) // the same answers, faster (kernel.cpp)
-            found = HitCommittedTriangles(scene, skipTriangle, ray, &shear, s.tMin, s.tMax, anyHit,
-                                          hit) ||
+        if (LayoutIsCurrent(scene)) { // the same answers, faster (kernel.cpp)
+            found = HitCommittedTriangles(scene, skipTriangle, ray, s.tMin, s.tMax, anyHit, hit) ||
                     found;
-        else
+        } else {
+            RayShear shear; // the per-ray half of the test, once for all the triangles
+            ShearRay(ray, &shear);
             found =
                 HitWatertightTriangles(scene->triangles.data(), (int)scene->triangles.size(),
                                        skipTriangle, ray, &shear, s.tMin, s.tMax, anyHit, hit) ||
                 found;
+        }
         return found && ScaleBack(&s, start->tMin, tMax, hit);
     }
     for (int i = 0, n = (int)scene->triangles.size(); i < n; i++) {

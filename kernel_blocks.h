@@ -148,7 +148,6 @@ struct Search {
     const TriangleSetUp *setUps; // the triangles' boxes and planes (SceneLayout)
     const Ray *ray;
     const RayShear *shear;
-    SlabRay slab; // for the BVH's boxes (SlabInterval)
     LaneRay lanes;
     int skip;
     real tMin, tMax;

@@ -795,6 +795,24 @@ struct RayShear {
 };
 void ShearRay(const Ray *ray, RayShear *shear);
 
+// v with its axes renamed (kx, ky, kz) = (kz + 1, kz + 2, kz) mod 3. A rotation keeps the
+// triangles' winding, whatever kz is. kz is a compile-time constant, so every component below is
+// a plain field, not an indexed load: the triangle loop is compiled once per axis (HitShapes).
+template <int kz> inline vec3 RenameAxes(vec3 v) {
+    if constexpr (kz == 0)
+        return {v.y, v.z, v.x};
+    else if constexpr (kz == 1)
+        return {v.z, v.x, v.y};
+    else
+        return v;
+}
+
+// ShearRay for a ray whose kz is known (watertight.cpp explains the shear).
+template <int kz> inline void ShearRayAxes(const Ray *ray, RayShear *shear) {
+    vec3 d = RenameAxes<kz>(ray->dir);
+    *shear = {kz, RenameAxes<kz>(ray->origin), d.x / d.z, d.y / d.z};
+}
+
 // The watertight test of one triangle for a ray whose shear is computed: as IntersectTriangle.
 // `setUp` as for RobustPlaneHit.
 bool IntersectWatertight(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray,
@@ -851,9 +869,10 @@ inline bool SpheresAreCurrent(const Scene *scene) {
 bool HitCommittedSpheres(const Scene *scene, int skip, const Ray *ray, real tMin, real *tMax,
                          bool anyHit, RayHit *hit);
 
-// HitWatertightTriangles over the committed layout: the same hit, to the bit.
-bool HitCommittedTriangles(const Scene *scene, int skip, const Ray *ray, const RayShear *shear,
-                           real tMin, real tMax, bool anyHit, RayHit *hit);
+// HitWatertightTriangles over the committed layout: the same hit, to the bit. (It shears the ray
+// itself, ShearRayAxes, so that the numbers it spreads over its lanes come from registers.)
+bool HitCommittedTriangles(const Scene *scene, int skip, const Ray *ray, real tMin, real tMax,
+                           bool anyHit, RayHit *hit);
 
 // A packet for the kernel: `count` rays (at most kLanes), each searched for as it is (ScaleRay
 // leaves it alone), with its start (tMin, and the shape it leaves), and one tMax. kz: the axis

@@ -30,28 +30,12 @@ static real EdgeSign(real ax, real ay, real bx, real by) {
     return e > 0 ? real(1) : e < 0 ? real(-1) : real(0);
 }
 
-// v with its axes renamed (kx, ky, kz) = (kz + 1, kz + 2, kz) mod 3. A rotation keeps the
-// triangles' winding, whatever kz is. kz is a compile-time constant, so every component below is
-// a plain field, not an indexed load: the triangle loop is compiled once per axis (HitShapes).
-template <int kz> static inline vec3 RenameAxes(vec3 v) {
-    if constexpr (kz == 0)
-        return {v.y, v.z, v.x};
-    else if constexpr (kz == 1)
-        return {v.z, v.x, v.y};
-    else
-        return v;
-}
-
 // The per-ray half of the watertight test (Woop, Benthin & Wald 2013, §3): kz is the largest
 // |d| component, and the shear turns the ray into the +z axis. It depends on the ray only, so
 // the shape loop computes it once for all the triangles. (The paper also swaps kx and ky when
 // d[kz] < 0, to keep the winding for back-face culling. That negates u, v and w together, which
-// changes nothing for a two-sided test, so it is left out.)
-template <int kz> static void ShearRayAxes(const Ray *ray, RayShear *shear) {
-    vec3 d = RenameAxes<kz>(ray->dir);
-    *shear = {kz, RenameAxes<kz>(ray->origin), d.x / d.z, d.y / d.z};
-}
-
+// changes nothing for a two-sided test, so it is left out.) ShearRayAxes (ray.h) computes it for
+// one kz.
 void ShearRay(const Ray *ray, RayShear *shear) {
     int kz = DominantAxis(ray->dir);
     if (kz == 0)
