@@ -243,39 +243,48 @@ static void SameRenderScenes(Scene scenes[3]) {
 }
 
 // A pixel's colour as one sample at a time gives it (the grid's positions, SamplePosition), each
-// traced alone (TraceRay, TracePath): RenderPixel, which traces them in packets, must give these
-// very bits and count the same rays.
+// traced alone (TraceRay, TracePath): RenderPixel, which traces them in packets and finds their
+// cells row after row (NextCell), must give these very bits and count the same rays. Sample
+// counts whose grid rows differ in length (3: 1 + 2; 10: 3 + 3 + 4; 17: 4 + 4 + 4 + 5) and a
+// square (9).
+static int PixelsThatDiffer(const Scene *scene, RenderSettings settings, int samples) {
+    int size = 8, differ = 0;
+    settings.width = settings.height = size;
+    settings.samplesPerPixel = samples;
+    PlanRender(scene, &settings);
+    for (int j = 0; j < size; j++)
+        for (int i = 0; i < size; i++) {
+            TraceLog log = {RayStats{}, nullptr, -1, 0};
+            color sum = {0, 0, 0};
+            for (int k = 0; k < samples; k++) {
+                Ray ray;
+                GetCameraRay(&settings.camera, size, size, SamplePosition(i, j, k, samples), &ray);
+                sum = sum + (scene->shading == SHADING_PATH
+                                 ? TracePath(scene, &settings, &ray, i, j, k, &log)
+                                 : TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye,
+                                            RayChain{1, 1}, &log));
+            }
+            sum = (real(1) / samples) * sum;
+            RayStats stats = {};
+            color pixel = RenderPixel(scene, &settings, i, j, &stats);
+            differ += !SameBits(pixel, sum) || stats.shadow != log.stats.shadow ||
+                      stats.diffuse != log.stats.diffuse ||
+                      stats.reflection != log.stats.reflection;
+        }
+    return differ;
+}
+
 static void TestPixelsAsOneByOne() {
     Scene scenes[3];
     SameRenderScenes(scenes);
     for (Scene &scene : scenes) {
         CommitScene(&scene, LAYOUT_LIST);
-        RenderSettings settings = TestSettings(&scene);
-        settings.width = settings.height = 16;
-        settings.samplesPerPixel = 9;
-        PlanRender(&scene, &settings);
-        int differ = 0;
-        for (int j = 0; j < 16; j++)
-            for (int i = 0; i < 16; i++) {
-                TraceLog log = {RayStats{}, nullptr, -1, 0};
-                color sum = {0, 0, 0};
-                for (int k = 0; k < 9; k++) {
-                    Ray ray;
-                    GetCameraRay(&settings.camera, 16, 16, SamplePosition(i, j, k, 9), &ray);
-                    sum = sum + (scene.shading == SHADING_PATH
-                                     ? TracePath(&scene, &settings, &ray, i, j, k, &log)
-                                     : TraceRay(&scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye,
-                                                RayChain{1, 1}, &log));
-                }
-                sum = (real(1) / 9) * sum;
-                RayStats stats = {};
-                color pixel = RenderPixel(&scene, &settings, i, j, &stats);
-                differ += !SameBits(pixel, sum) || stats.shadow != log.stats.shadow ||
-                          stats.diffuse != log.stats.diffuse ||
-                          stats.reflection != log.stats.reflection;
-            }
-        CHECK(differ == 0, "of 256 pixels of 9 samples, traced in packets and one by one, " +
-                               std::to_string(differ) + " differ in colour or in rays counted");
+        for (int samples : {3, 9, 10, 17}) {
+            int differ = PixelsThatDiffer(&scene, TestSettings(&scene), samples);
+            CHECK(differ == 0, "of 64 pixels of " + std::to_string(samples) +
+                                   " samples, traced in packets and one by one, " +
+                                   std::to_string(differ) + " differ in colour or in rays counted");
+        }
     }
 }
 
