@@ -37,8 +37,8 @@ static RT_INLINE bool HitLayout(const SceneLayout *layout, Search *s, RayHit *hi
 // as one 32-byte load of the five 8-byte numbers just stored, which waited for the stores: 8% of
 // the time of a small mesh's eye rays.)
 template <int kz, bool kWide>
-static RT_INLINE bool HitSheared(const Scene *scene, int skip, const Ray *ray, real tMin,
-                                 real tMax, bool anyHit, RayHit *hit) {
+static RT_INLINE bool HitSheared(const Scene *scene, int skip, const Ray *ray, real tMin, real tMax,
+                                 bool anyHit, RayHit *hit) {
     RayShear shear;
     ShearRayAxes<kz>(ray, &shear);
     Search s = {scene->triangles.data(),
