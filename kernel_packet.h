@@ -15,6 +15,8 @@
 #include "kernel_spheres.h"
 #include "plane_lanes.h"
 
+#include <utility>
+
 // The packet's rays, lane by lane: what Survivors and MayMeet splat for one ray, here one ray a
 // lane. Lanes past the packet's end repeat its first ray, and their answers are not kept.
 struct PacketLanes {
@@ -44,24 +46,36 @@ static RT_INLINE void Found(PacketSearch *p, int r) {
         p->active &= ~(1u << r);
 }
 
-// Everything a packet's search starts from, in one pass over its rays: the lanes (the rays
-// coordinate by coordinate, each lane past `count` repeating the first ray), each ray's interval
-// and the shapes it skips, and the rays four at a time for tier 1's lanes (plane_lanes.h). Then
+// One number of each ray of the packet (`value` of the ray in each lane: ray `lane`, or the first
+// past `count`) as a vector, made in registers: a vector of scalars stored to memory and at once
+// read back as one waits for the stores (the assignment at 16 spp took 0.60 s against 0.47).
+template <typename Value, size_t... lane>
+static RT_INLINE Lanes LanesOf(const RayPacket *q, Value value, std::index_sequence<lane...>) {
+    return Lanes{value(&q->rays[(int)lane < q->count ? lane : 0])...};
+}
+template <typename Value> static RT_INLINE Lanes LanesOf(const RayPacket *q, Value value) {
+    return LanesOf(q, value, std::make_index_sequence<kLanes>());
+}
+
+// Everything a packet's search starts from: the lanes (the rays coordinate by coordinate, each
+// lane past `count` repeating the first ray); in one pass over its rays, each ray's interval and
+// the shapes it skips, and the rays four at a time for tier 1's lanes (plane_lanes.h). Then
 // the shear, in lanes, as ShearRay computes it for each ray (watertight.cpp): the axes renamed
 // so that kz, the largest component of every ray's direction, is z, and sx = d[kx] / d[kz],
 // sy = d[ky] / d[kz].
 template <int kz> static RT_INLINE void StartPacket(PacketSearch *p, PacketLanes *l) {
     const RayPacket *q = p->packet;
+    l->px = LanesOf(q, [](const Ray *ray) { return ray->origin.x; });
+    l->py = LanesOf(q, [](const Ray *ray) { return ray->origin.y; });
+    l->pz = LanesOf(q, [](const Ray *ray) { return ray->origin.z; });
+    l->dx = LanesOf(q, [](const Ray *ray) { return ray->dir.x; });
+    l->dy = LanesOf(q, [](const Ray *ray) { return ray->dir.y; });
+    l->dz = LanesOf(q, [](const Ray *ray) { return ray->dir.z; });
+    l->a = LanesOf(q, [](const Ray *ray) { return Dot(ray->dir, ray->dir); });
     for (int lane = 0; lane < kLanes; lane++) {
         int r = lane < q->count ? lane : 0;
         const Ray *ray = &q->rays[r];
         const RayStart *start = &q->starts[r];
-        // (lane by lane into the vectors, in registers: scalars stored to memory and at once read
-        // back as one vector wait for the stores; that way the assignment at 16 spp took 0.60 s
-        // against 0.47)
-        l->px[lane] = ray->origin.x, l->py[lane] = ray->origin.y, l->pz[lane] = ray->origin.z;
-        l->dx[lane] = ray->dir.x, l->dy[lane] = ray->dir.y, l->dz[lane] = ray->dir.z;
-        l->a[lane] = Dot(ray->dir, ray->dir);
         p->tMin[lane] = start->tMin, p->tMax[lane] = q->tMax, p->best[lane] = -1;
         p->found[lane] = false;
         p->skipSphere[lane] = start->shape == SHAPE_SPHERE ? start->index : -1;
