@@ -5,6 +5,8 @@
 // them change from test to test; each colour is worked out from kd * max(ambient, N.L).
 #include "test.h"
 
+#include <cmath>
+
 // A matte material of grey level kd, or a mirror reflecting the fraction k.
 Material Matte(const char *name, color kd) { return {name, kd, kd, 0, 1, 0, 0, {0, 0, 0}}; }
 Material Mirror(const char *name, real k) {
@@ -117,7 +119,22 @@ static void TestDepthCutsFacingMirrors() {
     }
 }
 
+// The floor's max(ambient, S) is std::fmax's answer, written out (FMax): a NaN loses to a number.
+// (Of +0 and -0 the standard lets fmax return either; GCC's folding and glibc differ. FMax
+// returns the first, and the pixel's byte is the same.)
+static void TestFloorMaxIsFmax() {
+    const real values[] = {0, -real(0), 1, -1, real(0.2), kInfinity, -kInfinity, std::nan("")};
+    int differ = 0;
+    for (real a : values)
+        for (real b : values) {
+            real mine = FMax(a, b), library = std::fmax(a, b);
+            differ += !(mine == library || (mine != mine && library != library));
+        }
+    CHECK(differ == 0, "FMax and std::fmax differ on " + std::to_string(differ) + " of 64 pairs");
+}
+
 void TestShading() {
+    TestFloorMaxIsFmax();
     TestLit();
     TestShadow();
     TestFacingAway();
