@@ -96,6 +96,24 @@ static double SecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// An error or warning, as one line `ray: MESSAGE` on standard error, whatever it quotes: a
+// control character (a newline in a file's name) is written as an escape, \n or \xHH.
+static void Complain(const std::string &message) {
+    std::string line = "ray: ";
+    for (unsigned char c : message) {
+        if (c >= 0x20 && c != 0x7f)
+            line += (char)c;
+        else if (c == '\n')
+            line += "\\n";
+        else {
+            char escape[8];
+            snprintf(escape, sizeof escape, "\\x%02x", c);
+            line += escape;
+        }
+    }
+    fprintf(stderr, "%s\n", line.c_str());
+}
+
 // --compare: prints the difference, writes the heat map if -o was given. Returns the exit code.
 static int Compare(const Options *opt) {
     Image a, b, heat;
@@ -103,12 +121,12 @@ static int Compare(const Options *opt) {
     int status;
     if (!opt->output.empty() &&
         !CheckOutputPath(opt->output, {opt->compareA, opt->compareB}, &status, &error)) {
-        fprintf(stderr, "ray: %s\n", error.c_str());
+        Complain(error);
         return status;
     }
     if (!ReadPng(opt->compareA.c_str(), &a, &error) ||
         !ReadPng(opt->compareB.c_str(), &b, &error)) {
-        fprintf(stderr, "ray: %s\n", error.c_str());
+        Complain(error);
         return 2;
     }
     ImageDifference d;
@@ -120,7 +138,7 @@ static int Compare(const Options *opt) {
            "%ld\n",
            d.rmse, d.psnr, d.largest, opt->tolerance, d.pixelsOver, (long)a.width * a.height);
     if (!opt->output.empty() && !WriteImage(opt->output.c_str(), &heat, &error)) {
-        fprintf(stderr, "ray: %s\n", error.c_str());
+        Complain(error);
         return 3;
     }
     return d.pixelsOver > 0 ? 1 : 0;
@@ -137,12 +155,12 @@ static int Probe(const Options *opt, const Scene *scene, const RenderSettings *s
     bool fromStdin = opt->raysFile == "-";
     struct stat info;
     if (!fromStdin && stat(opt->raysFile.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
-        fprintf(stderr, "ray: %s: is a directory, not a file of rays\n", opt->raysFile.c_str());
+        Complain(opt->raysFile + ": is a directory, not a file of rays");
         return 2;
     }
     FILE *file = fromStdin ? stdin : fopen(opt->raysFile.c_str(), "rb");
     if (!file) {
-        fprintf(stderr, "ray: %s: %s\n", opt->raysFile.c_str(), strerror(errno));
+        Complain(opt->raysFile + ": " + strerror(errno));
         return 2;
     }
     int status = 0;
@@ -152,7 +170,7 @@ static int Probe(const Options *opt, const Scene *scene, const RenderSettings *s
         if (read == LINE_END)
             break;
         if (read == LINE_BAD) { // not text: no line after this one can be trusted either
-            fprintf(stderr, "ray: %s:%d: %s\n", opt->raysFile.c_str(), lineNumber, error.c_str());
+            Complain(opt->raysFile + ":" + std::to_string(lineNumber) + ": " + error);
             status = 2;
             break;
         }
@@ -180,15 +198,20 @@ static bool SquarePixels(double W, double H, double h, double v) {
 }
 
 // A size that keeps the screen's pixels square: `width` wide, or, when no whole height fits that
-// width (a 3 x 1 screen 100 pixels wide would need 33.3), the next width that has one. False when
-// no size within the limit (16384) fits.
+// width (a 3 x 1 screen 100 pixels wide would need 33.3 rows), the nearest width that has one
+// (99, with 33 rows; 33 x 24 asked of a 4 x 3 screen gives 32 x 24). False when no size within
+// the limit (16384) fits.
 static bool SquareSize(int width, double h, double v, int *W, int *H) {
     const int kMaxSide = 16384; // as --size and `size` allow
-    for (*W = width; *W <= kMaxSide; ++*W) {
-        *H = (int)std::lround(*W * v / h);
-        if (*H >= 1 && *H <= kMaxSide && SquarePixels(*W, *H, h, v))
-            return true;
-    }
+    for (int away = 0; away < kMaxSide; away++)
+        for (int w : {width - away, width + away}) { // (the narrower first)
+            int height = (int)std::lround(w * v / h);
+            if (w >= 1 && w <= kMaxSide && height >= 1 && height <= kMaxSide &&
+                SquarePixels(w, height, h, v)) {
+                *W = w, *H = height;
+                return true;
+            }
+        }
     return false;
 }
 
@@ -272,7 +295,7 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
     inputs.insert(inputs.end(), scene->meshFiles.begin(), scene->meshFiles.end());
     int status;
     if (!CheckOutputPath(output, inputs, &status, &error)) {
-        fprintf(stderr, "ray: %s\n", error.c_str());
+        Complain(error);
         return status;
     }
     Image image;
@@ -284,7 +307,7 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
         Render(scene, settings, &image, &stats);
     double renderSeconds = SecondsSince(renderStart);
     if (!WriteImage(output.c_str(), &image, &error)) {
-        fprintf(stderr, "ray: %s\n", error.c_str());
+        Complain(error);
         return 3;
     }
     if (opt->stats) {
@@ -300,7 +323,7 @@ static int Run(int argc, char **argv) {
     Options opt;
     std::string error, defaultOutput;
     if (!ParseOptions(argc, argv, &opt, &error)) {
-        fprintf(stderr, "ray: %s\n", error.c_str());
+        Complain(error);
         return 2;
     }
     if (opt.help || opt.version) {
@@ -313,18 +336,18 @@ static int Run(int argc, char **argv) {
         return Compare(&opt);
     Scene scene;
     if (!LoadScene(opt.scene, &scene, &defaultOutput, &error)) {
-        fprintf(stderr, "ray: %s\n", error.c_str());
+        Complain(error);
         return 2;
     }
     for (const std::string &warning : scene.warnings)
-        fprintf(stderr, "ray: %s\n", warning.c_str());
+        Complain(warning);
     std::string warning;
     if (!CheckScreenCameraSize(&opt, &scene, &error, &warning)) {
-        fprintf(stderr, "ray: %s\n", error.c_str());
+        Complain(error);
         return 2;
     }
     if (!warning.empty())
-        fprintf(stderr, "ray: %s\n", warning.c_str());
+        Complain(warning);
     RenderSettings settings = ChosenSettings(&opt, &scene);
     // The scene's commit: only the robust triangle test has a fast layout, and the sphere blocks
     // come with it (the handouts' methods are the plain loop, as written). The BVH is built on
@@ -346,7 +369,7 @@ int main(int argc, char **argv) {
     try {
         return Run(argc, argv);
     } catch (const std::bad_alloc &) {
-        fprintf(stderr, "ray: out of memory\n");
+        Complain("out of memory");
         return 2;
     }
 }

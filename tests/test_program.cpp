@@ -145,13 +145,17 @@ static void TestBadInput(const std::string &dir) {
           "a 4 x 3 screen camera at --size 300x300: refused, with the size that keeps it");
     CHECK(RunRay(dir, handout2 + " --size 80x60 -o ok.png", &err) == 0,
           "and at --size 80x60, its own shape, rendered");
-    // A 3 x 1 screen 100 pixels wide would need 33.3 rows: the size named is one that fits
+    // A 3 x 1 screen 100 pixels wide would need 33.3 rows: the size named is the nearest that
+    // fits, and renders
     std::ofstream(dir + "/wide.scene")
         << "camera screen 0 0 0 -1.5 -0.5 -1 3 0 0 0 1 0\nsize 102 34\n";
     CHECK(RunRay(dir, "wide.scene --size 100x33 -o w.png", &err) == 2 &&
-              err.find("--size 102x34 keeps them square") != std::string::npos &&
-              RunRay(dir, "wide.scene --size 102x34 -o w.png", &err) == 0,
-          "a 3 x 1 screen at --size 100x33: refused, and the size it names, 102x34, rendered");
+              err.find("--size 99x33 keeps them square") != std::string::npos &&
+              RunRay(dir, "wide.scene --size 99x33 -o w.png", &err) == 0,
+          "a 3 x 1 screen at --size 100x33: refused, and the size it names, 99x33, rendered");
+    CHECK(RunRay(dir, handout2 + " --size 33x24 -o near.png", &err) == 2 &&
+              err.find("--size 32x24 keeps them square") != std::string::npos,
+          "a 4 x 3 screen camera at --size 33x24: the nearest size that fits, 32x24, named");
     // The scene's own size is the scene's to choose: rendered, with a warning
     std::ofstream(dir + "/stretched.scene")
         << "camera screen 0 0 0 -2 -1.5 -1 4 0 0 0 3 0\nsize 512 512\n";
@@ -282,6 +286,21 @@ static void TestCompareInProgram(const std::string &dir) {
     CHECK(RunRay(dir, "--compare a.png nothere.png", &err) == 2, "--compare of a missing file: 2");
 }
 
+// An error is one line, even where it quotes a name with a newline in it: the newline is
+// written as \n. (The name is single-quoted for the shell, which keeps the newline.)
+static void TestOneLineErrors(const std::string &dir) {
+    std::string err;
+    CHECK(RunRay(dir, "'no\nsuch.scene' -o x.png", &err) == 2 &&
+              err.find("no\\nsuch.scene") != std::string::npos &&
+              std::count(err.begin(), err.end(), '\n') == 1,
+          "a missing scene named with a newline: one line, the newline as \\n (" + err + ")");
+    std::ofstream(dir + "/two\nlines.scene") << "size 8 8\nsphere 0 0 -3\n";
+    CHECK(RunRay(dir, "'two\nlines.scene' -o x.png", &err) == 2 &&
+              err.find("two\\nlines.scene:2:") != std::string::npos &&
+              std::count(err.begin(), err.end(), '\n') == 1,
+          "a bad line in a scene named with a newline: one line, FILE:LINE (" + err + ")");
+}
+
 void TestProgram() {
     std::string dir = MakeTestDir("test");
     if (dir.empty())
@@ -291,5 +310,6 @@ void TestProgram() {
     TestSceneFilesInProgram(dir);
     TestProbesInProgram(dir);
     TestCompareInProgram(dir);
+    TestOneLineErrors(dir);
     RemoveTestDir(dir);
 }
