@@ -241,7 +241,9 @@ bool ReadPng(const char *path, Image *image, std::string *error) {
         *error = std::string(path) + ": " + png.message;
         return false;
     }
-    // Any PNG is converted to 8-bit RGB; alpha is dropped against a black background
+    // Any PNG is converted to 8-bit RGB; alpha is dropped against a black background. (libpng's
+    // simplified reader takes a 16-bit PNG's samples as linear light and encodes them as sRGB:
+    // its values are not the file's high bytes. docs/command-line.md says so.)
     png.format = PNG_FORMAT_RGB;
     image->width = (int)png.width;
     image->height = (int)png.height;

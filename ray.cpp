@@ -97,21 +97,9 @@ static double SecondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 // An error or warning, as one line `ray: MESSAGE` on standard error, whatever it quotes: a
-// control character (a newline in a file's name) is written as an escape, \n or \xHH.
+// control character (a newline in a file's name) is written as an escape (PrintableLine).
 static void Complain(const std::string &message) {
-    std::string line = "ray: ";
-    for (unsigned char c : message) {
-        if (c >= 0x20 && c != 0x7f)
-            line += (char)c;
-        else if (c == '\n')
-            line += "\\n";
-        else {
-            char escape[8];
-            snprintf(escape, sizeof escape, "\\x%02x", c);
-            line += escape;
-        }
-    }
-    fprintf(stderr, "%s\n", line.c_str());
+    fprintf(stderr, "ray: %s\n", PrintableLine(message).c_str());
 }
 
 // --compare: prints the difference, writes the heat map if -o was given. Returns the exit code.
@@ -199,15 +187,16 @@ static bool SquarePixels(double W, double H, double h, double v) {
 
 // A size that keeps the screen's pixels square: `width` wide, or, when no whole height fits that
 // width (a 3 x 1 screen 100 pixels wide would need 33.3 rows), the nearest width that has one
-// (99, with 33 rows; 33 x 24 asked of a 4 x 3 screen gives 32 x 24). False when no size within
-// the limit (16384) fits.
+// (99, with 33 rows; 33 x 24 asked of a 4 x 3 screen gives 32 x 24). A width's height is the
+// nearest whole one, or the limit where that is beyond it (within 1 part in 256, the limit
+// itself may fit). False when no size within the limit (16384) fits.
 static bool SquareSize(int width, double h, double v, int *W, int *H) {
     const int kMaxSide = 16384; // as --size and `size` allow
     for (int away = 0; away < kMaxSide; away++)
         for (int w : {width - away, width + away}) { // (the narrower first)
-            int height = (int)std::lround(w * v / h);
-            if (w >= 1 && w <= kMaxSide && height >= 1 && height <= kMaxSide &&
-                SquarePixels(w, height, h, v)) {
+            double exact = w * v / h;
+            int height = exact >= kMaxSide ? kMaxSide : std::max(1, (int)std::lround(exact));
+            if (w >= 1 && w <= kMaxSide && SquarePixels(w, height, h, v)) {
                 *W = w, *H = height;
                 return true;
             }

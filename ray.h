@@ -1117,6 +1117,10 @@ void Tokenize(const std::string &line, std::vector<std::string> *tokens);
 // A token as it may be shown in a message: quoted, at most 40 characters, unprintable bytes as ?.
 std::string Shown(const std::string &token);
 
+// A message as one printable line: control characters (C0, DEL and C1, and the Unicode line and
+// paragraph separators) and bytes that are not UTF-8 written as escapes, \n or \xHH a byte.
+std::string PrintableLine(const std::string &text);
+
 // Reads a number token: decimal digits with an optional sign, point and exponent, finite.
 // Returns false and sets *error for anything else (inf, nan, hexadecimal, trailing characters).
 bool ParseReal(const std::string &token, real *value, std::string *error);

@@ -6,7 +6,10 @@
 // UTF-8 byte-order mark (what Windows Notepad writes) at the start is skipped.
 #include "ray.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 
 LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::string *error) {
@@ -67,6 +70,52 @@ std::string Shown(const std::string &token) {
         if ((unsigned char)c < 32 || (unsigned char)c > 126)
             c = '?';
     return "'" + s + (token.size() > 40 ? "...'" : "'");
+}
+
+// How many bytes from s[i] make one UTF-8 character (Unicode 15, table 3-7: no overlong form, no
+// surrogate, nothing past U+10FFFF), and its code point; 0 if they do not make one.
+static int Utf8Character(const std::string &s, size_t i, uint32_t *point) {
+    unsigned char lead = (unsigned char)s[i];
+    int n = lead < 0x80                    ? 1
+            : lead >= 0xc2 && lead <= 0xdf ? 2
+            : lead >= 0xe0 && lead <= 0xef ? 3
+            : lead >= 0xf0 && lead <= 0xf4 ? 4
+                                           : 0;
+    if (n == 0 || i + n > s.size())
+        return 0;
+    uint32_t p = n == 1 ? lead : lead & (0x7f >> n);
+    for (int k = 1; k < n; k++) {
+        unsigned char c = (unsigned char)s[i + k];
+        if ((c & 0xc0) != 0x80)
+            return 0;
+        p = p << 6 | (c & 0x3f);
+    }
+    const uint32_t least[5] = {0, 0, 0x80, 0x800, 0x10000};
+    if (p < least[n] || (p >= 0xd800 && p <= 0xdfff) || p > 0x10ffff)
+        return 0;
+    *point = p;
+    return n;
+}
+
+std::string PrintableLine(const std::string &text) {
+    std::string line;
+    for (size_t i = 0; i < text.size();) {
+        uint32_t p = 0;
+        int n = Utf8Character(text, i, &p);
+        bool control = p < 0x20 || (p >= 0x7f && p <= 0x9f) || p == 0x2028 || p == 0x2029;
+        if (n > 0 && !control) {
+            line.append(text, i, n), i += n;
+        } else if (text[i] == '\n') {
+            line += "\\n", i++;
+        } else { // a control character, a byte at a time, or a byte that is not UTF-8
+            for (int k = 0; k < std::max(n, 1); k++, i++) {
+                char escape[8];
+                snprintf(escape, sizeof escape, "\\x%02x", (unsigned char)text[i]);
+                line += escape;
+            }
+        }
+    }
+    return line;
 }
 
 // Decimal digits with an optional sign, point and exponent: -2, +0.5, 1e-3, .5, 5.

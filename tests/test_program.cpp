@@ -156,6 +156,12 @@ static void TestBadInput(const std::string &dir) {
     CHECK(RunRay(dir, handout2 + " --size 33x24 -o near.png", &err) == 2 &&
               err.find("--size 32x24 keeps them square") != std::string::npos,
           "a 4 x 3 screen camera at --size 33x24: the nearest size that fits, 32x24, named");
+    // A screen 16400 times as tall as wide: 16384 rows, the limit, are within 1 part in 256
+    std::ofstream(dir + "/tall.scene") << "camera screen 0 0 0 -0.5 -8200 -1 1 0 0 0 16400 0\n";
+    CHECK(RunRay(dir, "tall.scene --size 1x100 -o t.png", &err) == 2 &&
+              err.find("--size 1x16384 keeps them square") != std::string::npos &&
+              RunRay(dir, "tall.scene --size 1x16384 -o t.png", &err) == 0,
+          "a 1 x 16400 screen at --size 1x100: the size at the limit, 1x16384, named and rendered");
     // The scene's own size is the scene's to choose: rendered, with a warning
     std::ofstream(dir + "/stretched.scene")
         << "camera screen 0 0 0 -2 -1.5 -1 4 0 0 0 3 0\nsize 512 512\n";
@@ -301,7 +307,29 @@ static void TestOneLineErrors(const std::string &dir) {
           "a bad line in a scene named with a newline: one line, FILE:LINE (" + err + ")");
 }
 
+// What PrintableLine keeps and what it escapes: printable ASCII and UTF-8 characters stay; C0
+// and C1 controls, DEL, the line and paragraph separators and bytes that are not UTF-8 become
+// \xHH (a newline \n).
+static void TestPrintableLine() {
+    const char *cases[][2] = {{"plain.scene:3: fine", "plain.scene:3: fine"},
+                              {"r\xc3\xb8"
+                               "d \xe2\x82\xac \xf0\x9f\x99\x82",
+                               "r\xc3\xb8"
+                               "d \xe2\x82\xac \xf0\x9f\x99\x82"},
+                              {"a\nb\tc\rd\x1b"
+                               "e\x7f",
+                               "a\\nb\\x09c\\x0dd\\x1be\\x7f"},
+                              {"nel\xc2\x85 ls\xe2\x80\xa8 ps\xe2\x80\xa9",
+                               "nel\\xc2\\x85 ls\\xe2\\x80\\xa8 ps\\xe2\\x80\\xa9"},
+                              {"csi\x9b lone\xc3 overlong\xc0\xaf surrogate\xed\xa0\x80",
+                               "csi\\x9b lone\\xc3 overlong\\xc0\\xaf surrogate\\xed\\xa0\\x80"}};
+    for (auto &c : cases)
+        CHECK(PrintableLine(c[0]) == c[1],
+              std::string("PrintableLine: ") + c[1] + ", got " + PrintableLine(c[0]));
+}
+
 void TestProgram() {
+    TestPrintableLine();
     std::string dir = MakeTestDir("test");
     if (dir.empty())
         return;
