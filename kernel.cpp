@@ -116,6 +116,8 @@ RT_AVX2 static RT_NOINLINE bool ChunksAvx2(const Scene *scene, int skip, const R
 
 bool HitCommittedSpheres(const Scene *scene, int skip, const Ray *ray, real tMin, real *tMax,
                          bool anyHit, RayHit *hit) {
+    if (scene->layout.sphereCount == 0) // (a mesh scene: no call, no lanes made for nothing)
+        return false;
     bool one = scene->layout.sphereCount <= (size_t)(kChunkBlocks * kLanes);
 #if RT_DISPATCH
     if (scene->layout.wide)
