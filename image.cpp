@@ -241,9 +241,11 @@ bool ReadPng(const char *path, Image *image, std::string *error) {
         *error = std::string(path) + ": " + png.message;
         return false;
     }
-    // Any PNG is converted to 8-bit RGB; alpha is dropped against a black background. (libpng's
-    // simplified reader takes a 16-bit PNG's samples as linear light and encodes them as sRGB:
-    // its values are not the file's high bytes. docs/command-line.md says so.)
+    // Any PNG is converted to 8-bit RGB; alpha is dropped against a black background. A 16-bit
+    // PNG that does not say how it is encoded is taken as sRGB, as an 8-bit one is (libpng would
+    // take it as linear light and re-encode it, 200/255 becoming 228/255), so that it compares
+    // equal to the 8-bit file of the same colours.
+    png.flags |= PNG_IMAGE_FLAG_16BIT_sRGB;
     png.format = PNG_FORMAT_RGB;
     image->width = (int)png.width;
     image->height = (int)png.height;

@@ -290,6 +290,22 @@ static void TestCompareInProgram(const std::string &dir) {
     CHECK(RunRay(dir, "--compare a.png b.png --tolerance 255", &err) == 0,
           "--compare within tolerance 255: exit 0");
     CHECK(RunRay(dir, "--compare a.png nothere.png", &err) == 2, "--compare of a missing file: 2");
+    // A 16-bit PNG without gAMA or sRGB (one pixel of 200, 100 and 50 times 257: IHDR bit depth
+    // 16, colour type 2; IDAT the filter byte 0 and the six bytes c8 c8 64 64 32 32, deflated)
+    // reads as the 8-bit pixel of the same colours, not as linear light re-encoded
+    const unsigned char png16[] = {
+        0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44,
+        0x52, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x10, 0x02, 0x00, 0x00, 0x00, 0xc0,
+        0xe7, 0x8f, 0x9d, 0x00, 0x00, 0x00, 0x0f, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0x38,
+        0x71, 0x22, 0x25, 0xc5, 0xc8, 0x08, 0x00, 0x0b, 0xf1, 0x02, 0xbd, 0xe0, 0x77, 0x27, 0xff,
+        0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+    std::ofstream(dir + "/sixteen.png", std::ios::binary).write((const char *)png16, sizeof png16);
+    Image sixteen;
+    std::string readError;
+    bool read = ReadPng((dir + "/sixteen.png").c_str(), &sixteen, &readError);
+    CHECK(read && sixteen.width == 1 && sixteen.height == 1 && sixteen.pixels[0] == 200 &&
+              sixteen.pixels[1] == 100 && sixteen.pixels[2] == 50,
+          "a 16-bit PNG of (200, 100, 50) x 257 reads as the 8-bit (200, 100, 50)");
 }
 
 // An error is one line, even where it quotes a name with a newline in it: the newline is
