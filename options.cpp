@@ -23,7 +23,8 @@ const char *kUsage =
     "  --aa grid|jitter|adaptive\n"
     "                           where the samples go: a regular grid (default), one random\n"
     "                           point per grid cell, or 5 first (centre and corners) and N\n"
-    "                           only where those differ (N > 5; up to 5 it is jitter)\n"
+    "                           only where those differ (N > 5; up to 5 it is jitter; with\n"
+    "                           shading path, 16 random pilots, then up to N: path-tracing.md)\n"
     "  --depth N                most rays in one chain, primary included, 1..1000 (default 10)\n"
     "  --threads N              worker threads, 1..1024 (default: all hardware threads)\n"
     "  --methods robust|handout the numerical methods: rt's robust ones (default), or what a\n"
@@ -263,11 +264,11 @@ static bool CheckUnused(const Options *opt, const std::string &seen, std::string
         {opt->view, // one ray through each pixel's centre, on one thread
          "--view",
          {"--spp", "--aa", "--threads", "--seed", "--scatter", "--lights", "--roulette"}},
-        // what the eye ray found: no ray leaves a surface, and no glass is shaded
+        // what the eye ray found: no ray leaves a surface, no glass is shaded, no chain follows
         {opt->view && opt->viewKind != VIEW_COST && opt->viewKind != VIEW_SHADOW,
          "--view normal, depth or id",
-         {"--self-hit", "--fresnel"}},
-        {opt->view && opt->viewKind == VIEW_SHADOW, "--view shadow", {"--fresnel"}},
+         {"--self-hit", "--fresnel", "--depth"}},
+        {opt->view && opt->viewKind == VIEW_SHADOW, "--view shadow", {"--fresnel", "--depth"}},
         {opt->compare,
          "--compare",
          {"--size", "--spp", "--aa", "--threads", "--depth", "--methods", "--sphere", "--triangle",

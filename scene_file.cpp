@@ -170,7 +170,12 @@ static bool ReadTriangle(const Statement *st, Scene *scene, std::string *error) 
 
 static bool ReadLight(const Statement *st, Scene *scene, std::string *error) {
     real v[6] = {0, 0, 0, 1, 1, 1};
-    size_t total = st->tokens.size() <= 4 ? 4 : 7;
+    size_t given = st->tokens.size() - 1, total = given <= 3 ? 4 : 7;
+    if (given != 3 && given < 6) // (a light has a place, and may have a colour)
+        return Fail(st,
+                    "light: expected 3 numbers (X Y Z) or 6 (X Y Z R G B), got " +
+                        std::to_string(given),
+                    error);
     if (!Numbers(st, 1, (int)total - 1, total, v, error))
         return false;
     Light light = {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};

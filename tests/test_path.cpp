@@ -120,6 +120,16 @@ static void TestInsideGlowingSphere() {
         double expected = (1 - std::pow(0.5, k)) / 0.5;
         CHECK_NEAR(c.x, expected, 8 * kRelTol,
                    "cap of " + std::to_string(k) + " rays: Le (1 + rho + ... + rho^(k-1))");
+        // With next-event estimation the k-th ray's hit also samples the lamp, the sphere itself:
+        // rho/pi Le cos cos' / r^2 over the density 1 / (4 pi R^2), and on a sphere cos = cos' =
+        // r / 2R, so exactly rho Le, weighted rho^(k-1): one term more
+        for (LightMethod lights : {LIGHTS_NEE, LIGHTS_MIS}) {
+            RenderSettings n = PathSettings(&scene, 2, {SCATTER_COSINE, lights, true, 0});
+            color d = Pixel(&scene, &n, 3, 4, &stats);
+            CHECK_NEAR(d.x, (1 - std::pow(0.5, k + 1)) / 0.5, 8 * kRelTol,
+                       "cap of " + std::to_string(k) +
+                           " rays, next-event estimation: Le (1 + rho + ... + rho^k)");
+        }
     }
     // Unbiased methods, no cap to speak of: the mean of 64 pixels within 4 standard errors
     for (LightMethod lights : {LIGHTS_MIS, LIGHTS_NEE, LIGHTS_NONE}) {

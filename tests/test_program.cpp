@@ -132,6 +132,8 @@ static void TestBadInput(const std::string &dir) {
         {"--ray 0 0 0 0 0 -1 --camera-ray slides", "--camera-ray changes nothing with --ray"},
         {"--view normal --self-hit skip", "--self-hit changes nothing with --view normal"},
         {"--view shadow --fresnel schlick", "--fresnel changes nothing with --view shadow"},
+        {"--view id --depth 3", "--depth changes nothing with --view normal, depth or id"},
+        {"--view shadow --depth 3", "--depth changes nothing with --view shadow"},
         {"--compare a.png b.png my.scene", "changes nothing with --compare"}};
     for (auto &u : unused)
         CHECK(RunRay(dir, u[0], &err) == 2 && err.find(u[1]) != std::string::npos,
