@@ -2,7 +2,7 @@
 //
 // The second handout finds a triangle hit in two steps: where the ray meets the triangle's
 // plane, then whether that point is inside. rt decides "inside" with the watertight test
-// (geometry.cpp) and takes t from the plane, here, with the handout's formula:
+// (watertight.cpp) and takes t from the plane, here, with the handout's formula:
 //     t = n.(a - o) / n.d,   n = (b - a) x (c - a).
 // Why not the watertight test's own t = (U az + V bz + W cz) / det: its edge functions carry an
 // error of about u L^2 for a triangle of length L, and det is about L w for its width w, so that

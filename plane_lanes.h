@@ -19,13 +19,16 @@ typedef decltype(PlaneLanes() < PlaneLanes()) PlaneMask;    // per lane: all bit
 const int kPlaneLanes = 4;
 
 static RT_INLINE PlaneLanes Same(double x) { return PlaneLanes{x, x, x, x}; }
-static RT_INLINE PlaneLanes Magnitude(PlaneLanes v) { // fabs, lane by lane: the sign bit cleared
+// fabs, lane by lane: the sign bit cleared. (The vector by pointer: passed by value, GCC notes
+// that 32-byte arguments pass differently since GCC 4.6, whatever the pragma in kernel_blocks.h.)
+static RT_INLINE PlaneLanes Magnitude(const PlaneLanes *v) {
     typedef long long Bits __attribute__((vector_size(32)));
     Bits b;
-    memcpy(&b, &v, sizeof b);
+    memcpy(&b, v, sizeof b);
     b &= Bits{} + 0x7fffffffffffffffll;
-    memcpy(&v, &b, sizeof v);
-    return v;
+    PlaneLanes m;
+    memcpy(&m, &b, sizeof m);
+    return m;
 }
 static RT_INLINE bool Lane(const PlaneMask *m, int lane) { return (*m)[lane] != 0; }
 
@@ -47,20 +50,20 @@ static RT_INLINE void QuickPlaneLanes(const Triangle *tri, const TriangleSetUp *
     PlaneLanes toAz = Same(tri->a.z) - r->oz;
     PlaneLanes denominator = Same(n.x) * r->dx + Same(n.y) * r->dy + Same(n.z) * r->dz;
     PlaneLanes t = (Same(n.x) * toAx + Same(n.y) * toAy + Same(n.z) * toAz) / denominator;
-    PlaneMask finite = Magnitude(t) <= Same(DBL_MAX);
+    PlaneMask finite = Magnitude(&t) <= Same(DBL_MAX);
     // PlainError
-    PlaneLanes absDx = Magnitude(r->dx), absDy = Magnitude(r->dy), absDz = Magnitude(r->dz);
+    PlaneLanes absDx = Magnitude(&r->dx), absDy = Magnitude(&r->dy), absDz = Magnitude(&r->dz);
     PlaneLanes nx = Same(std::fabs(n.x)), ny = Same(std::fabs(n.y)), nz = Same(std::fabs(n.z));
     PlaneLanes eN =
-        GammaD(4) * (nx * Magnitude(toAx) + ny * Magnitude(toAy) + nz * Magnitude(toAz));
+        GammaD(4) * (nx * Magnitude(&toAx) + ny * Magnitude(&toAy) + nz * Magnitude(&toAz));
     PlaneLanes eD = GammaD(3) * (nx * absDx + ny * absDy + nz * absDz);
     PlaneLanes cx = toAx - t * r->dx, cy = toAy - t * r->dy, cz = toAz - t * r->dz;
-    PlaneLanes absT = Magnitude(t);
-    PlaneLanes error =
-        2 * ((eN + absT * eD +
-              (Same(e.x) * Magnitude(cx) + Same(e.y) * Magnitude(cy) + Same(e.z) * Magnitude(cz))) /
-             Magnitude(denominator)) +
-        GammaD(1) * absT;
+    PlaneLanes absT = Magnitude(&t);
+    PlaneLanes error = 2 * ((eN + absT * eD +
+                             (Same(e.x) * Magnitude(&cx) + Same(e.y) * Magnitude(&cy) +
+                              Same(e.z) * Magnitude(&cz))) /
+                            Magnitude(&denominator)) +
+                       GammaD(1) * absT;
     // WellInside
     const Box *box = &setUp->box;
     PlaneLanes pad = 0.5 * ((double)kBoxAllowance * box->size + r->originPad);
@@ -70,7 +73,7 @@ static RT_INLINE void QuickPlaneLanes(const Triangle *tri, const TriangleSetUp *
     inside &= (qz >= box->lo[2] - pad) & (qz <= box->hi[2] + pad);
     // FirstOrderHolds
     PlaneLanes eD2 = eD + (Same(e.x) * absDx + Same(e.y) * absDy + Same(e.z) * absDz);
-    PlaneMask trusted = eD2 <= kFirstOrderShare * Magnitude(denominator);
+    PlaneMask trusted = eD2 <= kFirstOrderShare * Magnitude(&denominator);
     // The answers, in QuickPlaneT's order
     PlaneLanes zero = Same(0);
     PlaneMask inRange = (t - 2 * error < *tMax) & (t + error > zero) & (t + 2 * error > r->tMin);
