@@ -17,12 +17,18 @@
 #include <thread>
 #include <unistd.h>
 
+// Rounding half away from zero, as std::lround does, without the library call (three of them a
+// pixel): v - whole is exact (whole is v with its fraction cut off, so the difference is that
+// fraction), where the shortcut (int)(v + 0.5) is not: v + 0.5 can round up to the next integer,
+// as it does for the largest double below 0.5.
 uint8_t ToByte(real c) {
     if (!(c > 0))
         return 0;
     if (c >= 1)
         return 255;
-    return (uint8_t)std::lround(c * 255);
+    real v = c * 255;
+    int whole = (int)v;
+    return (uint8_t)(whole + (v - (real)whole >= real(0.5)));
 }
 
 // The sRGB transfer curve (IEC 61966-2-1): linear light in [0, 1] to the encoded value a display

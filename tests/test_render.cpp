@@ -54,7 +54,31 @@ static const PixelPrediction kAssignmentPixels[] = {
     {0, 0, {0, 0, 0}, "top-left corner: passes left of the back wall, black"},
 };
 
+// A channel's byte: clamp(c, 0, 1) * 255 rounded half away from zero, as std::lround rounds it.
+// The values next to every half step (k + 0.5, one ulp either side) and those just below
+// 0.5 / 255, among them one whose product is the largest float below 0.5, where the shortcut
+// (int)(v + 0.5) would round up, give lround's answer; 0, 1, NaN and the values outside [0, 1]
+// give 0 and 255.
+static void CheckToByte() {
+    int wrong = 0;
+    for (int k = 0; k < 255; k++) {
+        real half = (real(k) + real(0.5)) / 255;
+        for (real c : {NextAfter(half, false), half, NextAfter(half, true)})
+            wrong += ToByte(c) != (uint8_t)std::lround(c * 255);
+    }
+    // 16 steps down from 0.5 / 255: in float, one step down, c * 255 is the largest float below 0.5
+    real below = real(0.5) / 255;
+    for (int step = 0; step < 16; step++, below = NextAfter(below, false))
+        wrong += ToByte(below) != (uint8_t)std::lround(below * 255);
+    CHECK(wrong == 0, "ToByte rounds as std::lround at all 255 half steps and just around them (" +
+                          std::to_string(wrong) + " differ)");
+    CHECK(ToByte(0) == 0 && ToByte(-1) == 0 && ToByte(std::nan("")) == 0 && ToByte(1) == 255 &&
+              ToByte(2) == 255 && ToByte(real(0.5)) == 128,
+          "ToByte: 0, -1 and NaN give 0; 1 and 2 give 255; 0.5 gives 127.5 rounded up, 128");
+}
+
 void TestAssignmentImage() {
+    CheckToByte();
     Scene scene;
     BuildDefaultScene(&scene);
     RenderSettings settings = TestSettings(&scene);
