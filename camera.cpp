@@ -13,8 +13,8 @@ void GetRay(Perspective p, vec2 screenCoord, Ray *ray) {
     real pixelSize = p.width / p.widthPixels;
     real x = (screenCoord.x - real(0.5) * p.widthPixels) * pixelSize;
     real y = (real(0.5) * p.heightPixels - screenCoord.y) * pixelSize;
-    ray->origin = p.eye;
-    ray->dir = {x, y, -p.distance};
+    ray->origin = p.eye;            // handout: the pixel's point on the screen (see GetCameraRay)
+    ray->dir = {x, y, -p.distance}; // handout: normalize(pixel - camera)
 }
 
 // The second handout's screen: pixel centres l + (i + .5)/W h + (j + .5)/H v with j counted

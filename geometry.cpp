@@ -216,8 +216,9 @@ static bool HitSpheres(const Scene *scene, Methods methods, int skip, const Ray 
 
 // The second handout's nearest hit over the list of shapes: every hit shrinks tMax, so each
 // later shape only counts if it is nearer, and a tie keeps the earlier shape. With anyHit, the
-// first hit found ends the search (a shadow ray needs no more). The shape `start` names (under
-// --self-hit skip, the one the ray leaves) is passed over.
+// first hit found ends the search (a shadow ray needs no more). The shape `start` names is passed
+// over: under --self-hit skip the one the ray leaves; under the default bound, the triangle it
+// leaves where the ray plainly goes away from it (StartLeaving, ray.h), and none otherwise.
 static bool HitShapes(const Scene *scene, Methods methods, const Ray *given, const RayStart *start,
                       real tMax, bool anyHit, RayHit *hit) {
     ScaledRay s;
@@ -312,7 +313,7 @@ void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray,
     *start = kFromTheEye;
     ray->dir = dir;
     ray->origin = hit->point;
-    if (methods->selfHit == SELF_HIT_BOUND) {
+    if (methods->selfHit == SELF_HIT_BOUND) { // handout: skip the shape left, or t_min = 0.001
         ray->origin = OffsetOrigin(hit, dir);
         *start = StartLeaving(hit, dir, dir);
     } else if (methods->selfHit == SELF_HIT_EPSILON) {

@@ -102,7 +102,9 @@ bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, rea
 // t = n.(a - o) / n.d (no hit if the ray is parallel, n.d = 0). Then inside or outside: the hit
 // point p is inside if the cross products (b - a) x (p - a), (c - b) x (p - b) and
 // (a - c) x (p - c) all point the way n does, compared on the coordinate where n is largest
-// (the other two can be 0 for a triangle seen edge-on). Not watertight: p is rounded, and each
+// (the other two can be 0 for a triangle seen edge-on). The handout dots each with n instead;
+// for p on the plane each cross product is parallel to n, so the sign is the same up to
+// rounding, from two products instead of nine. Not watertight: p is rounded, and each
 // triangle rounds its shared edge its own way. Its point's error bound is measured: how far
 // o + t d is from the plane, plus its own rounding.
 bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax,
@@ -119,6 +121,7 @@ bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real
     vec3 size = Abs(n);
     int k = size.x > size.y ? (size.x > size.z ? 0 : 2) : (size.y > size.z ? 1 : 2);
     real nk = Component(n, k);
+    // handout: Dot(Cross(b - a, p - a), n) < 0 || ... for the three edges
     if (Component(Cross(b - a, p - a), k) * nk < 0 || Component(Cross(c - b, p - b), k) * nk < 0 ||
         Component(Cross(a - c, p - c), k) * nk < 0)
         return false;

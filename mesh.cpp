@@ -76,7 +76,8 @@ static bool ParseMeshStep(const std::vector<std::string> &tokens, size_t *k, Mes
     const std::string &word = tokens[*k];
     size_t count = word == "scale" ? 1 : word == "rotate" ? 2 : word == "translate" ? 3 : 0;
     if (count == 0) {
-        *error = "unknown transform word " + Shown(word) + " (expected scale, rotate or translate)";
+        *error = "unknown transform word " + Shown(word) +
+                 " (expected scale, rotate or translate; a file name may not contain spaces)";
         return false;
     }
     if (*k + count >= tokens.size()) {
@@ -168,6 +169,16 @@ static bool ReadVertex(const std::vector<std::string> &tokens, const std::vector
 // One corner of a face, `v`, `v/vt`, `v//vn` or `v/vt/vn`: the vertex it names, counted from 1,
 // or back from the last vertex read so far if negative (-1 is the last one). The texture and
 // normal indices are not used, but must be whole numbers where they are written.
+// An index too large for an int is still a well-formed one, and out of range: it is said so.
+static bool OutOfRange(const std::string &v, size_t vertexCount, std::string *error) {
+    size_t digits = v.find_first_not_of("+-") == 1 ? 1 : 0;
+    if (v.size() <= digits || v.find_first_not_of("0123456789", digits) != std::string::npos)
+        return false;
+    *error = "f: vertex index " + v + " is out of range (" + std::to_string(vertexCount) +
+             " vertices read so far; the first is 1)";
+    return true;
+}
+
 static bool ReadCorner(const std::string &corner, size_t vertexCount, size_t *vertex,
                        std::string *error) {
     size_t slash = corner.find('/');
@@ -176,7 +187,10 @@ static bool ReadCorner(const std::string &corner, size_t vertexCount, size_t *ve
     std::string vt = rest.substr(0, second);
     std::string vn = second == std::string::npos ? "" : rest.substr(second + 1);
     int index, unused;
-    if (!ParseWholeNumber(corner.substr(0, slash), -INT_MAX, INT_MAX, &index, error) ||
+    std::string v = corner.substr(0, slash);
+    if (!ParseWholeNumber(v, -INT_MAX, INT_MAX, &index, error) && OutOfRange(v, vertexCount, error))
+        return false;
+    if (!ParseWholeNumber(v, -INT_MAX, INT_MAX, &index, error) ||
         (!vt.empty() && !ParseWholeNumber(vt, -INT_MAX, INT_MAX, &unused, error)) ||
         (!vn.empty() && !ParseWholeNumber(vn, -INT_MAX, INT_MAX, &unused, error))) {
         *error = "f: bad corner " + Shown(corner) + " (expected v, v/vt, v//vn or v/vt/vn)";

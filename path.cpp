@@ -90,8 +90,10 @@ static bool Faces(const Scene *scene, const Emitter *e, const RayHit *hit, vec3 
 }
 
 // How far past p (t = 1) EmitterVisible looks first. The ray meets e at t = 1 to within the
-// rounding of p's coordinates against its distance, far less than this unless e is some 2^-30
-// of its coordinates' size away.
+// rounding of p's coordinates against its distance, about u |p| / |p - o|: far less than this in
+// double unless e is some 2^-30 of its coordinates' size away, and in float unless it is some
+// 1/16 of it. Nearer than that the first search may miss e, and the second, to infinity, finds
+// it: the same answer, later.
 const real kPastEmitter = real(0x1p-20);
 
 // Whether nothing stands between the shaded hit and the point p of emitter e, which faces it:
@@ -239,8 +241,8 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
         return false;
     Depart(path, hit);
     // The emitters' shadow ray first, then the point lights' (the order the ray tree has always
-    // shown). Without point lights, PointLights' +0 would add nothing: the sum's sign of zero
-    // may differ, but the light gathered, which starts at +0, never becomes -0 either way
+    // shown). A scene without point lights skips PointLights, whose sum would be 0: the same
+    // image, a call less
     color direct = Emitters(path, hit, rho, last);
     if (!path->scene->lights.empty())
         direct = PointLights(path, hit, rho) + direct;

@@ -126,7 +126,8 @@ static RT_INLINE double PlainError(const PlaneProblem *p, dvec3 toA, double t, d
 // Tier 2: the formula in double-double, from the exact edges and the exact a - o. Every
 // operation is within 8 u^2 of its operands' sizes, and no value passes through more than four
 // of them, so 32 u^2 of the first-order terms' sizes bounds what they contribute; rounding the
-// two sums to double and dividing adds 3 u of t.
+// two sums to double and dividing adds 3 u of t to first order, which gamma(4) covers with room
+// for the products of those three roundings.
 RT_COLD static PlaneT WidePlaneT(const PlaneProblem *p) {
     int k = p->fixed->scale;
     dvec3 b = Widen(p->tri->b), c = Widen(p->tri->c);
@@ -148,7 +149,9 @@ RT_COLD static PlaneT WidePlaneT(const PlaneProblem *p) {
 // The edges and normal of tier 1, and the box. The edges are scaled by a power of two when they
 // lie outside 2^+-64, so that the longer one's largest component is in [1, 2): n is then at
 // most 8 (less for a sliver), and n.(a - o) over- or underflows only where a - o itself nearly
-// does. ldexp scales by any power, in exact steps.
+// does. Inside 2^+-64 no scaling is needed: n stays within about 2^+-130 of 1 (a sliver aside),
+// so n.(a - o) overflows only where a - o is within that factor of overflowing itself, and the
+// scene's own numbers would fail first. ldexp scales by any power, in exact steps.
 void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp) {
     setUp->box = TriangleBox(tri);
     dvec3 a = Widen(tri->a), e1 = Sub(Widen(tri->b), a), e2 = Sub(Widen(tri->c), a);
@@ -177,7 +180,8 @@ void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp) {
         setUp->normalKnown ? (real)(4 * ((e.x + e.y + e.z) / largest)) + 16 * kUnitRoundoff : 0;
 
     // The unit normal, for shading. A sliver's n may be so small that n.n underflows: then it is
-    // scaled by a power of two first, which changes no bit of n / |n|.
+    // scaled by a power of two first, which changes no bit of n / |n|. (Within 2^+-500, n.n, at
+    // most three squares of the largest component, stays inside double's normal range, 2^+-1022.)
     setUp->hasArea = largest > 0 && std::isfinite(largest);
     if (setUp->hasArea && !(largest >= 0x1p-500 && largest <= 0x1p500))
         n = Scale(std::ldexp(1.0, -std::ilogb(largest)), n);
@@ -229,14 +233,6 @@ static inline bool IntoWindow(const PlaneProblem *p, Window *w, PlaneT *plane) {
     return (!w->known && WellInside(p, plane->t, w)) || MoveIntoWindow(w, plane);
 }
 
-// The plane's t for a ray whose line passes inside the triangle, and whether it counts: in
-// (tMin, tMax), and above its own error bound, so a ray that starts on this plane, having just
-// left it, does not hit it again. Tier 1's t decides alone only where its bound puts it clearly
-// outside (tMin, tMax), or clearly inside and within kPlainRelativeError of itself: a long
-// triangle's plain t can be off by far more than rounding, enough to put a floor behind a shape
-// just beyond it. Everything else, and every triangle whose bound is not sound (FirstOrderHolds),
-// goes to tier 2. Both tiers' t are kept in the triangle's window (IntoWindow); moving t there
-// changes it by at most as much as it changes t's bound, so tier 1's early answers stay right.
 // Whether tier 1's bound can be believed: being first order, it leaves out products of two
 // errors, which is sound only while each error is small against what it is an error of. With
 // the normal known to 2^-10 of its length, and n.d to 2^-10 of its value (counting both the
@@ -253,6 +249,14 @@ static RT_INLINE bool FirstOrderHolds(const PlaneProblem *p, double denominator)
 
 // t where the ray meets the triangle's plane, in (tMin, tMax), with its bound: tier 1, then tier 2
 // where tier 1's bound cannot decide (the file's opening comment). False if there is none.
+// The plane's t counts for a ray whose line passes inside the triangle when it is in
+// (tMin, tMax), and above its own error bound, so a ray that starts on this plane, having just
+// left it, does not hit it again. Tier 1's t decides alone only where its bound puts it clearly
+// outside (tMin, tMax), or clearly inside and within kPlainRelativeError of itself: a long
+// triangle's plain t can be off by far more than rounding, enough to put a floor behind a shape
+// just beyond it. Everything else, and every triangle whose bound is not sound (FirstOrderHolds),
+// goes to tier 2. Both tiers' t are kept in the triangle's window (IntoWindow); moving t there
+// changes it by at most as much as it changes t's bound, so tier 1's early answers stay right.
 // (QuickPlaneT below repeats tier 1, operation for operation, for the hits it settles alone: a
 // change here is a change there.)
 static bool FindPlaneT(const PlaneProblem *p, Window *w, real tMin, real tMax, PlaneT *plane) {

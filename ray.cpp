@@ -15,6 +15,7 @@
 #include <new>
 #include <sys/stat.h>
 #include <thread>
+#include <unistd.h>
 
 // The scenes built in C++ (the scene_*.cpp files, which the Makefile compiles, all of them), by
 // the name the command line gives them, and the image each writes by default. A scene of your
@@ -237,6 +238,17 @@ static bool CheckScreenCameraSize(const Options *opt, const Scene *scene, std::s
     return !opt->width;
 }
 
+// The progress line on standard error: percentage, rays per second (every kind), time left,
+// redrawn in place, and cleared at the end.
+static void ShowProgress(const RenderProgress *p) {
+    if (p->finished)
+        fprintf(stderr, "\r%*s\r", 45, "");
+    else
+        fprintf(stderr, "\r%5.1f%%  %7.2f Mrays/s  %5.1f s left ", 100 * p->done,
+                p->raysPerSecond / 1e6, p->secondsLeft);
+    fflush(stderr);
+}
+
 // The render settings the scene and the options choose.
 static RenderSettings ChosenSettings(const Options *opt, const Scene *scene) {
     RenderSettings settings;
@@ -252,7 +264,7 @@ static RenderSettings ChosenSettings(const Options *opt, const Scene *scene) {
     settings.methods = ChosenMethods(opt);
     settings.path = {(ScatterMethod)opt->scatter, (LightMethod)opt->lights, opt->roulette == 1,
                      opt->seed};
-    settings.showProgress = true;
+    settings.progress = isatty(2) ? ShowProgress : nullptr; // (a line drawn in place: a terminal's)
     PlanRender(scene, &settings);
     return settings;
 }

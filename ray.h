@@ -149,7 +149,8 @@ enum ShapeKind { SHAPE_SPHERE, SHAPE_TRIANGLE };
 // ray leaving this point computes a safe origin.
 struct RayHit {
     real t;          // ray parameter of the hit, in units of the ray's own dir
-    vec3 point;      // hit point (on the surface for a sphere; o + t d for a triangle)
+    vec3 point;      // hit point: on a sphere's surface, o + t d on a triangle (and on a sphere
+                     // under --sphere textbook, whose point is the handout's o + t d)
     vec3 normal;     // unit geometric normal, turned to face the incoming ray
     bool frontFace;  // the ray arrived on the outward side
     int material;    // index into scene->materials
@@ -190,7 +191,7 @@ struct Light {
     color intensity;
 };
 
-// The two lighting rules of the README's scene format.
+// The three lighting rules of the README's scene format (`shading floor|phong|path`).
 enum ShadingModel {
     SHADING_FLOOR, // the assignment handout's kd * max(ambient, sum of I (N.L))
     SHADING_PHONG, // the second handout's ka Ia + sum of I (kd (N.L) + ks max(0, R.V)^n)
@@ -198,7 +199,6 @@ enum ShadingModel {
                    // bounces, estimated by Monte Carlo paths (path.cpp)
 };
 
-// Everything a render needs to know about the world. Shapes name materials by index.
 // ---- the committed scene: the shapes in the layout the fast loop reads (commit.cpp) ----------
 
 // A scene is written as the handouts' structs; once per render CommitScene (like Embree's scene
@@ -284,6 +284,7 @@ struct SceneLayout {
     SceneLayout &operator=(SceneLayout &&) = default;
 };
 
+// Everything a render needs to know about the world. Shapes name materials by index.
 struct Scene {
     int width, height; // image size in pixels
     Camera camera;
@@ -340,6 +341,9 @@ struct Methods {
     CameraRayMethod cameraRay;
     FresnelMethod fresnel;
 };
+// The epsilon is the lesson of the handout methods, not a tuned number: 1e-4 is a usual student
+// fix (Ray Tracing in One Weekend takes 0.001), right at the assignment's scale of 1 and wrong
+// far from it (docs/accuracy-and-time.md measures where). The robust methods never read it.
 const Methods kRobustMethods = {SPHERE_STABLE, TRIANGLE_WATERTIGHT, SELF_HIT_BOUND,
                                 real(1e-4),    CAMERA_RAY_EYE,      FRESNEL_EXACT};
 const Methods kHandoutMethods = {SPHERE_TEXTBOOK, TRIANGLE_CRAMER,   SELF_HIT_EPSILON,
@@ -404,18 +408,28 @@ struct PathMethods {
     int seed;        // mixed into every random number: another seed, another (equally good) noise
 };
 
+// How far a render has come, for a progress line: the share of rows done, the rays cast a second
+// so far (every kind), and the seconds the rest will likely take. `finished`: the last report, so
+// that a line drawn in place can be cleared.
+struct RenderProgress {
+    double done, raysPerSecond, secondsLeft;
+    bool finished;
+};
+typedef void (*ProgressReport)(const RenderProgress *progress);
+
 // How one render is done; filled from the scene and the command line.
 struct RenderSettings {
     int width, height;   // image size in pixels
     int samplesPerPixel; // primary rays per pixel (the most, for adaptive sampling)
     SampleMethod sampling;
-    int depth;         // most rays in one chain, primary included
-    int threads;       // worker threads; the image never depends on it
-    Methods methods;   // the numerical methods (kRobustMethods, or as --methods and co. choose)
-    bool showProgress; // redraw a progress line on standard error
-    Effects effects;   // filled by PlanRender
-    Camera camera;     // the scene's camera for this image size, filled by PlanRender
-    PathMethods path;  // how `shading path` samples (ignored by the other shadings)
+    int depth;       // most rays in one chain, primary included
+    int threads;     // worker threads; the image never depends on it
+    Methods methods; // the numerical methods (kRobustMethods, or as --methods and co. choose)
+    ProgressReport progress; // called every half second of a render that runs that long, and
+                             // at its end; nullptr: none (Render itself never prints)
+    Effects effects;         // filled by PlanRender
+    Camera camera;           // the scene's camera for this image size, filled by PlanRender
+    PathMethods path;        // how `shading path` samples (ignored by the other shadings)
 };
 
 enum RayKind { RAY_PRIMARY, RAY_SHADOW, RAY_REFLECTION, RAY_REFRACTION, RAY_DIFFUSE };
@@ -1013,9 +1027,11 @@ void TraceEyeRays(const Scene *scene, const RenderSettings *settings, const Ray 
 
 // ---- camera.cpp: the cameras; render.cpp: the render loop -----------------------------------
 
-// The handout's GetRay: the ray from the eye through screenCoord, given in pixels from the
-// screen's top-left corner (pixel (i, j)'s centre is (i + 0.5, j + 0.5)). ray->dir is the
-// vector from the eye to that point of the screen, not normalised.
+// The assignment's GetRay(Perspective, vec2, Ray*), in rt's form: the ray from the eye through
+// screenCoord, given in pixels from the screen's top-left corner (pixel (i, j)'s centre is
+// (i + 0.5, j + 0.5)). ray->dir is the vector from the eye to that point of the screen, not
+// normalised. (The slides' own ray starts at that point with the vector normalised: GetCameraRay
+// makes it under `--camera-ray slides`.)
 void GetRay(Perspective p, vec2 screenCoord, Ray *ray);
 
 // The second handout's camera: the ray from the eye through l + (x / W) h + (1 - y / H) v for

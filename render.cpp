@@ -15,7 +15,6 @@
 #include <chrono>
 #include <cstdio>
 #include <thread>
-#include <unistd.h>
 
 // Rounding half away from zero, as std::lround does, without the library call (three of them a
 // pixel): v - whole is exact (whole is v with its fraction cut off, so the difference is that
@@ -204,11 +203,16 @@ static color AdaptivePixel(const Scene *scene, const RenderSettings *settings, i
 // Adaptive sampling for `shading path`, in two stages so that it stays unbiased: kPathFirst
 // pilot samples, each at a random point of the pixel, estimate the spread of the pixel's
 // samples; from it follows how many samples bring the error of the mean, as the sRGB curve will
-// show it, below kPathTolerance of an 8-bit step (at least kPathFirst, at most samplesPerPixel);
+// show it, below kPathTolerance, two 8-bit steps (at least kPathFirst, at most samplesPerPixel);
 // then that many fresh samples make the pixel. The pilots are not averaged in: a count chosen
 // from the very samples it averages leans toward those that happened to agree (16 black pilots
 // of a lamp found only by chance would stop a pixel at black). A pixel whose paths agree (the
 // background, a surface lit straight on) costs 2 x kPathFirst; a noisy one all its samples.
+// 16 pilots estimate a pixel's spread to within about a fifth (the relative error of a sample
+// deviation from n samples is about 1 / sqrt(2 (n - 1))), which the count's square law turns into
+// some 40%: coarse, but it only sets how many fresh samples to take, never what they average to.
+// The tolerance is the choice of what noise a viewer may still see; docs/path-tracing.md measures
+// what it buys.
 const int kPathFirst = 16;
 const double kPathTolerance = 2.0 / 255;
 
@@ -316,7 +320,8 @@ static bool TakeRow(const Scene *scene, const RenderSettings *settings, RowQueue
     RayStats row = {};
     RenderRow(scene, settings, j, image, &row);
     AddStats(&row, stats);
-    queue->raysCast.fetch_add(row.primary + row.shadow + row.reflection + row.refraction);
+    queue->raysCast.fetch_add(row.primary + row.shadow + row.reflection + row.refraction +
+                              row.diffuse);
     queue->rowsDone.fetch_add(1);
     return true;
 }
@@ -327,14 +332,12 @@ static void RenderWorker(const Scene *scene, const RenderSettings *settings, Row
     }
 }
 
-// The progress line: percentage, rays per second, time left; redrawn in place on a terminal.
-static void ShowProgress(const RowQueue *queue, int height, double seconds) {
+// How far the render has come after `seconds`, for the progress report.
+static RenderProgress Progress(const RowQueue *queue, int height, double seconds) {
     double rays = (double)queue->raysCast.load();
     double done = (double)queue->rowsDone.load() / height;
     double left = done > 0 ? seconds * (1 - done) / done : 0;
-    fprintf(stderr, "\r%5.1f%%  %7.2f Mrays/s  %5.1f s left ", 100 * done, rays / seconds / 1e6,
-            left);
-    fflush(stderr);
+    return {done, rays / seconds, left, false};
 }
 
 void Render(const Scene *scene, const RenderSettings *requested, Image *image, RayStats *stats) {
@@ -352,25 +355,27 @@ void Render(const Scene *scene, const RenderSettings *requested, Image *image, R
     for (int k = 1; k < threads; k++)
         workers.emplace_back(RenderWorker, scene, settings, &queue, image, &perThread[k]);
 
-    // The calling thread renders too; with a progress line it renders one row at a time and
-    // redraws the line every half second once the render has run that long.
+    // The calling thread renders too; with a progress report it renders one row at a time and
+    // reports every half second once the render has run that long, and once more at the end.
     auto start = std::chrono::steady_clock::now();
     double lastShown = 0;
-    bool progress = settings->showProgress && isatty(2);
     while (TakeRow(scene, settings, &queue, image, &perThread[0])) {
-        if (!progress)
+        if (!settings->progress)
             continue;
         auto elapsed = std::chrono::steady_clock::now() - start;
         double seconds = std::chrono::duration<double>(elapsed).count();
         if (seconds - lastShown >= 0.5) {
-            ShowProgress(&queue, settings->height, seconds);
+            RenderProgress now = Progress(&queue, settings->height, seconds);
+            settings->progress(&now);
             lastShown = seconds;
         }
     }
     for (std::thread &w : workers)
         w.join();
-    if (lastShown > 0)
-        fprintf(stderr, "\r%*s\r", 45, "");
+    if (lastShown > 0) {
+        RenderProgress end = {1, 0, 0, true};
+        settings->progress(&end);
+    }
 
     for (const RayStats &s : perThread)
         AddStats(&s, stats);

@@ -312,33 +312,19 @@ static bool ReadMesh(const Statement *st, Scene *scene, std::string *error) {
     int material;
     if (st->tokens.size() < 3)
         return Fail(st, "mesh: expected a file name and a material name", error);
-    return FindMaterial(st, scene, 2, &material, error) &&
-           ReadMeshStatement(st->tokens, st->file, st->line, material,
+    if (!FindMaterial(st, scene, 2, &material, error)) {
+        if (st->tokens.size() > 3) // perhaps a file name with a space, cut in two: "(... here)"
+            error->insert(error->size() - 1, "; a mesh's file name may not contain spaces");
+        return false;
+    }
+    return ReadMeshStatement(st->tokens, st->file, st->line, material,
                              kMaxObjects - ObjectCount(scene), scene, error);
 }
 
-// One statement: checks it and adds what it says to the scene.
-static bool ReadStatement(const Statement *st, Scene *scene, Declared *declared,
-                          std::string *error) {
+// The statements that set one thing for the whole scene, each at most once.
+static bool ReadSetting(const Statement *st, Scene *scene, Declared *declared, std::string *error) {
     const std::string &k = st->tokens[0];
     real v[3];
-    if (k == "sphere")
-        return ReadSphere(st, scene, error);
-    if (k == "triangle")
-        return ReadTriangle(st, scene, error);
-    if (k == "mesh")
-        return ReadMesh(st, scene, error);
-    if (k == "material") {
-        for (const char *key : {"ambient", "specular", "emit"})
-            for (size_t t = 2; t < st->tokens.size(); t++)
-                if (st->tokens[t] == key)
-                    declared->shadingOnly.push_back({st->line, st->tokens[1] + ": " + key});
-        return ReadMaterial(st, scene, error);
-    }
-    if (k == "light")
-        return ReadLight(st, scene, error);
-    if (k == "camera")
-        return Once(st, &declared->camera, error) && ReadCamera(st, scene, error);
     if (k == "size") { // `size W H`, or `size W` for a square image, as --size takes it
         size_t total = st->tokens.size() == 2 ? 2 : 3;
         if (!Once(st, &declared->size, error) || !Numbers(st, 1, 0, total, v, error) ||
@@ -374,6 +360,30 @@ static bool ReadStatement(const Statement *st, Scene *scene, Declared *declared,
         return true;
     }
     return Fail(st, "unknown keyword " + Shown(k), error);
+}
+
+// One statement: checks it and adds what it says to the scene.
+static bool ReadStatement(const Statement *st, Scene *scene, Declared *declared,
+                          std::string *error) {
+    const std::string &k = st->tokens[0];
+    if (k == "sphere")
+        return ReadSphere(st, scene, error);
+    if (k == "triangle")
+        return ReadTriangle(st, scene, error);
+    if (k == "mesh")
+        return ReadMesh(st, scene, error);
+    if (k == "material") {
+        for (const char *key : {"ambient", "specular", "emit"})
+            for (size_t t = 2; t < st->tokens.size(); t++)
+                if (st->tokens[t] == key)
+                    declared->shadingOnly.push_back({st->line, st->tokens[1] + ": " + key});
+        return ReadMaterial(st, scene, error);
+    }
+    if (k == "light")
+        return ReadLight(st, scene, error);
+    if (k == "camera")
+        return Once(st, &declared->camera, error) && ReadCamera(st, scene, error);
+    return ReadSetting(st, scene, declared, error);
 }
 
 // Reads statements a line at a time from `file` (never the whole file at once).

@@ -156,7 +156,7 @@ static color FloorColor(const Shading *sh, const Surface *s) {
         real nDotL = Dot(hit->normal, toLight);
         if (!(nDotL > 0) || !LightIsVisible(sh, hit, &light))
             continue;
-        sum = sum + (nDotL / SafeLength(toLight)) * light.intensity;
+        sum = sum + (nDotL / SafeLength(toLight)) * light.intensity; // handout: N.normalize(L)
     }
     real ambient = sh->scene->ambient;
     return s->m->diffuse * Max(color{ambient, ambient, ambient}, sum);
@@ -200,18 +200,21 @@ static color PhongColor(const Shading *sh, const Surface *s) {
 static bool RefractedCosine(real cosI, real eta, real *cosT) {
     real etaCos = eta * cosI;
     if (eta <= 1) {
-        *cosT = std::hypot(std::sqrt((1 - eta) * (1 + eta)), etaCos);
+        *cosT = std::hypot(std::sqrt((1 - eta) * (1 + eta)), etaCos); // handout: as below
         return true;
     }
     real m = std::sqrt((eta - 1) * (eta + 1));
-    if (!(etaCos > m))
+    if (!(etaCos > m)) // handout: eta sin(i) > 1, with sin(i) = sqrt(1 - cosI^2)
         return false;
-    *cosT = std::sqrt((etaCos - m) * (etaCos + m));
+    *cosT = std::sqrt((etaCos - m) * (etaCos + m)); // handout: sqrt(1 - eta^2 (1 - cosI^2))
     return true;
 }
 
 // Snell's law, n1 sin(i) = n2 sin(t), for unit d arriving against the unit normal n (d.n <= 0)
-// and eta = n1 / n2: t = eta d + (eta cos(i) - cos(t)) n (Shirley & Marschner, FCG §13.1).
+// and eta = n1 / n2: t = eta d + (eta cos(i) - cos(t)) n (Shirley & Marschner, FCG §13.1). The
+// journal writes the same vector in two parts, after Ray Tracing in One Weekend: r_out_perp =
+// eta (d + cos(i) n) and r_out_parallel = -sqrt(1 - |r_out_perp|^2) n, whose sum this is, as
+// |r_out_perp|^2 = eta^2 sin^2(i) = 1 - cos^2(t).
 // Returns false, and leaves *t alone, for total internal reflection (sin(t) >= 1). The cosine is
 // clamped to [0, 1] because d.n of unit vectors can round past 1.
 bool Refract(vec3 d, vec3 n, real eta, vec3 *t) {
@@ -219,7 +222,7 @@ bool Refract(vec3 d, vec3 n, real eta, vec3 *t) {
     real cosT;
     if (!RefractedCosine(cosI, eta, &cosT))
         return false;
-    *t = eta * d + (eta * cosI - cosT) * n; // handout: cosT = sqrt(1 - eta^2 (1 - cosI^2))
+    *t = eta * d + (eta * cosI - cosT) * n; // journal: r_out_perp + r_out_parallel
     return true;
 }
 

@@ -95,7 +95,9 @@ static inline ShearedTriangle ShearCorners(const Triangle *tri, const RayShear *
 // True if two have strictly opposite signs: the ray passes outside an edge. Rounding is
 // monotonic (x >= y gives fl(x) >= fl(y)), so a rounded a b - c d has the sign of the exact one
 // or is 0. A true here is therefore never wrong, and a 0 is left to the exact recomputation.
-// Two that disagree end the test before the third is computed.
+// Two that disagree end the test before the third is computed. (These are the second handout's
+// cross products, (b - a) x (p - a) and the others, taken in the sheared plane where the ray is
+// the z axis: p is the origin there, so no hit point has to be computed, or rounded, first.)
 static inline bool EdgesDisagree(const ShearedTriangle *s, real *u, real *v, real *w) {
     *u = s->cx * s->by - s->cy * s->bx;
     *v = s->ax * s->cy - s->ay * s->cx;

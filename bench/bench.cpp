@@ -57,8 +57,8 @@ static const BenchScene kScenes[] = {{"assignment", 512, BuildDefaultScene},
 
 static RenderSettings Settings(const BenchScene &b, int spp, SampleMethod sampling) {
     unsigned hardware = std::thread::hardware_concurrency();
-    RenderSettings s = {b.size,         b.size, spp, sampling, 10, hardware ? (int)hardware : 1,
-                        kRobustMethods, false,  {},  {},       {}};
+    RenderSettings s = {b.size,         b.size,  spp, sampling, 10, hardware ? (int)hardware : 1,
+                        kRobustMethods, nullptr, {},  {},       {}};
     return s;
 }
 

@@ -67,7 +67,7 @@ static void TimeRender(const Scene *scene, Timing *timing) {
     RenderSettings settings = {};
     settings.width = scene->width, settings.height = scene->height;
     settings.samplesPerPixel = 1, settings.sampling = SAMPLES_GRID, settings.depth = scene->depth;
-    settings.threads = 1, settings.methods = kRobustMethods, settings.showProgress = false;
+    settings.threads = 1, settings.methods = kRobustMethods, settings.progress = nullptr;
     PlanRender(scene, &settings);
     Image image;
     RayStats stats = {};

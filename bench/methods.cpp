@@ -65,7 +65,7 @@ static void TimeRoutine(const char *name, Routine routine, Robust robust) {
 }
 
 static Image RenderWith(const Scene *scene, Methods methods) {
-    RenderSettings settings = {128, 128, 1, SAMPLES_GRID, scene->depth, 2, methods, false,
+    RenderSettings settings = {128, 128, 1, SAMPLES_GRID, scene->depth, 2, methods, nullptr,
                                {},  {},  {}};
     Image image;
     RayStats stats = {};
@@ -97,7 +97,7 @@ struct Kinds {
 };
 
 static std::vector<RayNode> CentreTree(const Scene *scene, Methods methods, int i, int j) {
-    RenderSettings settings = {128, 128, 1, SAMPLES_GRID, scene->depth, 1, methods, false,
+    RenderSettings settings = {128, 128, 1, SAMPLES_GRID, scene->depth, 1, methods, nullptr,
                                {},  {},  {}};
     PlanRender(scene, &settings);
     std::vector<RayNode> tree;
@@ -142,8 +142,8 @@ struct PlotPoint {
 static Spread RenderMilliseconds(const Scene &test, Methods methods) {
     std::vector<double> times(3);
     for (double &t : times) {
-        RenderSettings settings = {128,     128,   1,  SAMPLES_GRID, test.depth, 1,
-                                   methods, false, {}, {},           {}};
+        RenderSettings settings = {128,     128,     1,  SAMPLES_GRID, test.depth, 1,
+                                   methods, nullptr, {}, {},           {}};
         Image image;
         RayStats stats = {};
         auto start = std::chrono::steady_clock::now();
@@ -305,7 +305,7 @@ static void EpsilonPicture(const Scene &test, real scale, const std::string &pat
     Image sides[2];
     for (int k = 0; k < 2; k++) {
         RenderSettings settings = {
-            256, 256, 1, SAMPLES_GRID, scene.depth, 2, k ? epsilon : kRobustMethods, false,
+            256, 256, 1, SAMPLES_GRID, scene.depth, 2, k ? epsilon : kRobustMethods, nullptr,
             {},  {},  {}};
         RayStats stats = {};
         Render(&scene, &settings, &sides[k], &stats);

@@ -57,7 +57,7 @@ static double Render(const Scene *scene, PathMethods path, SampleMethod sampling
                         depth ? depth : scene->depth,
                         hardware ? (int)hardware : 1,
                         kRobustMethods,
-                        false,
+                        nullptr,
                         {},
                         {},
                         path};

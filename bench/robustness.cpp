@@ -134,7 +134,7 @@ static double Alike(double scale, double shift, const char *camera, bool glass) 
             k ? AssignmentText(scale, shift, camera, glass) : AssignmentText(1, 0, camera, glass);
         if (!ParseSceneText(text, "r.scene", &scene, &error))
             return -1;
-        RenderSettings settings = {64, 64, 1, SAMPLES_GRID, 10, 1, kRobustMethods, false,
+        RenderSettings settings = {64, 64, 1, SAMPLES_GRID, 10, 1, kRobustMethods, nullptr,
                                    {}, {}, {}};
         RayStats stats = {};
         Render(&scene, &settings, &images[k], &stats);

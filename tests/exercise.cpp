@@ -20,7 +20,7 @@ static bool TreeIsFinite(const std::vector<RayNode> &tree, std::string *why) {
 
 // Renders 4 x 4 pixels, each as a recorded ray tree, and checks every number in it.
 static bool RenderTiny(const Scene *scene, std::string *why) {
-    RenderSettings settings = {4,  4,  1, SAMPLES_GRID, scene->depth, 1, kRobustMethods, false,
+    RenderSettings settings = {4,  4,  1, SAMPLES_GRID, scene->depth, 1, kRobustMethods, nullptr,
                                {}, {}, {}};
     PlanRender(scene, &settings);
     for (int j = 0; j < 4; j++) {
@@ -63,7 +63,7 @@ bool ExerciseSceneText(const std::string &text, std::string *why) {
     if (scene.spheres.size() + scene.triangles.size() <= kMaxShapesToRender &&
         !RenderTiny(&scene, why))
         return false;
-    RenderSettings settings = {4, 4, 1, SAMPLES_GRID, 1, 1, kRobustMethods, false, {}, {}, {}};
+    RenderSettings settings = {4, 4, 1, SAMPLES_GRID, 1, 1, kRobustMethods, nullptr, {}, {}, {}};
     PlanRender(&scene, &settings);
     for (size_t start = 0; start < text.size();) {
         size_t end = std::min(text.find('\n', start), text.size());

@@ -48,7 +48,7 @@ RenderSettings TestSettings(const Scene *scene) {
     s.depth = scene->depth;
     s.threads = 1;
     s.methods = kRobustMethods;
-    s.showProgress = false;
+    s.progress = nullptr;
     s.path = {}; // the path tracer's defaults (cosine sampling, MIS, roulette, seed 0)
     PlanRender(scene, &s);
     return s;

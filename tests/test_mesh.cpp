@@ -96,6 +96,9 @@ static void TestObjErrors() {
         {three + "f 1 2 4\n", 4, "vertex index 4 is out of range (3 vertices read so far"},
         {three + "f 0 1 2\n", 4, "vertex index 0"},
         {three + "f -4 1 2\n", 4, "vertex index -4 is out of range"},
+        {three + "f 1 2 99999999999\n", 4, "vertex index 99999999999 is out of range (3 vertices"},
+        {three + "f -99999999999/1 1 2\n", 4, "vertex index -99999999999 is out of range"},
+        {three + "f 1 2 +-3\n", 4, "bad corner '+-3'"},
         {"f 1 2 3\n" + three, 1, "vertex index 1 is out of range (0 vertices"},
         {"# a cube\r\n\r\n" + three + "vn 0 0 1\r\nf 1 2 3\r\nf 1 2 9\r\n", 8, "index 9"},
         {three + "f 1 2\n", 4, "at least 3 corners, this one has 2"},
@@ -250,6 +253,13 @@ static void TestMeshStatementErrors(const std::string &dir) {
         {"mesh quad.obj m\n", 1, "material 'm' is not defined"},
         {"material m\nmesh quad.obj m scale 0\n", 2, "mesh: scale must be > 0"},
         {"material m\nmesh . m\n", 2, "not a regular file"},
+        // A file name with a space is two tokens: the message says what may have happened
+        {"material m\nmesh my quad.obj m\n", 2,
+         "material 'quad.obj' is not defined (define it above; a mesh's file name may not "
+         "contain spaces)"},
+        {"material m\nmaterial quad.obj\nmesh my quad.obj m\n", 3,
+         "unknown transform word 'm' (expected scale, rotate or translate; a file name may not "
+         "contain spaces)"},
     };
     for (const BadObj &b : bad) {
         std::string expected = dir + "/sub/s.scene:" + std::to_string(b.line) + ": ";
