@@ -166,6 +166,7 @@ static bool Reference(const std::string &dir, const BenchScene &b, const Scene *
 static void SceneRows(const std::string &dir, const BenchScene &b) {
     Scene scene;
     b.build(&scene);
+    CommitScene(&scene, LAYOUT_AUTO, 1); // as ./ray commits it: every time is the program's
     Image reference;
     if (!Reference(dir, b, &scene, &reference)) {
         fprintf(stderr, "bench: no reference image for %s in %s\n", b.name, dir.c_str());
