@@ -123,7 +123,8 @@ static void TestDepthCutsFacingMirrors() {
 // (Of +0 and -0 the standard lets fmax return either; GCC's folding and glibc differ. FMax
 // returns the first, and the pixel's byte is the same.)
 static void TestFloorMaxIsFmax() {
-    const real values[] = {0, -real(0), 1, -1, real(0.2), kInfinity, -kInfinity, real(std::nan(""))};
+    const real values[] = {0,         -real(0),  1,          -1,
+                           real(0.2), kInfinity, -kInfinity, real(std::nan(""))};
     int differ = 0;
     for (real a : values)
         for (real b : values) {
