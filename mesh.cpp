@@ -169,10 +169,15 @@ static bool ReadVertex(const std::vector<std::string> &tokens, const std::vector
 // One corner of a face, `v`, `v/vt`, `v//vn` or `v/vt/vn`: the vertex it names, counted from 1,
 // or back from the last vertex read so far if negative (-1 is the last one). The texture and
 // normal indices are not used, but must be whole numbers where they are written.
+// A whole number as written: an optional sign, then digits only, of any length.
+static bool WellFormedIndex(const std::string &v) {
+    size_t digits = v.find_first_not_of("+-") == 1 ? 1 : 0;
+    return v.size() > digits && v.find_first_not_of("0123456789", digits) == std::string::npos;
+}
+
 // An index too large for an int is still a well-formed one, and out of range: it is said so.
 static bool OutOfRange(const std::string &v, size_t vertexCount, std::string *error) {
-    size_t digits = v.find_first_not_of("+-") == 1 ? 1 : 0;
-    if (v.size() <= digits || v.find_first_not_of("0123456789", digits) != std::string::npos)
+    if (!WellFormedIndex(v))
         return false;
     *error = "f: vertex index " + v + " is out of range (" + std::to_string(vertexCount) +
              " vertices read so far; the first is 1)";
@@ -186,13 +191,13 @@ static bool ReadCorner(const std::string &corner, size_t vertexCount, size_t *ve
     size_t second = rest.find('/');
     std::string vt = rest.substr(0, second);
     std::string vn = second == std::string::npos ? "" : rest.substr(second + 1);
-    int index, unused;
+    int index;
     std::string v = corner.substr(0, slash);
     if (!ParseWholeNumber(v, -INT_MAX, INT_MAX, &index, error) && OutOfRange(v, vertexCount, error))
         return false;
     if (!ParseWholeNumber(v, -INT_MAX, INT_MAX, &index, error) ||
-        (!vt.empty() && !ParseWholeNumber(vt, -INT_MAX, INT_MAX, &unused, error)) ||
-        (!vn.empty() && !ParseWholeNumber(vn, -INT_MAX, INT_MAX, &unused, error))) {
+        (!vt.empty() && !WellFormedIndex(vt)) || // (vt and vn are read past, never used)
+        (!vn.empty() && !WellFormedIndex(vn))) {
         *error = "f: bad corner " + Shown(corner) + " (expected v, v/vt, v//vn or v/vt/vn)";
         return false;
     }

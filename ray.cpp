@@ -58,6 +58,10 @@ static void PrintLayout(const Scene *scene, double commitSeconds) {
                 scene->triangles.size());
         return;
     }
+    if (scene->triangles.empty()) { // (--layout bvh too: there is nothing to build a tree over)
+        fprintf(stderr, "triangles: none\n");
+        return;
+    }
     fprintf(stderr, "triangles: %zu in %zu blocks of %d, ", scene->triangles.size(),
             layout->blocks.size(), kLanes);
     if (layout->nodes.empty())

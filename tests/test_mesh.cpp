@@ -62,6 +62,8 @@ static void TestObjFaces() {
          "v 1 2 -1\nv 2 4 -2\nv 3 6 -3\nf -3 -2 -1\nv 4 8 -4\nf -3 -2 -1\n", "1 2 3, 2 3 4"},
         {"v/vt, v//vn and v/vt/vn",
          five + "f 1/1 2/2 3/3\nf 1//7 2//8 3//9\nf 3/1/1 4/2/2 5/-1/3\n", "1 2 3, 1 2 3, 3 4 5"},
+        {"vt and vn indices are read past, whatever their size",
+         five + "f 1/99999999999 2//-99999999999 3/+1/0\n", "1 2 3"},
         {"degenerate faces are kept", five + "f 1 1 2\nf 1 2 3 3\n", "1 1 2, 1 2 3, 1 3 3"},
         {"no newline after the last face", five + "f 1 2 3", "1 2 3"},
         {"comments, blank lines and tabs",
