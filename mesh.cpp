@@ -166,9 +166,6 @@ static bool ReadVertex(const std::vector<std::string> &tokens, const std::vector
     return true;
 }
 
-// One corner of a face, `v`, `v/vt`, `v//vn` or `v/vt/vn`: the vertex it names, counted from 1,
-// or back from the last vertex read so far if negative (-1 is the last one). The texture and
-// normal indices are not used, but must be whole numbers where they are written.
 // A whole number as written: an optional sign, then digits only, of any length.
 static bool WellFormedIndex(const std::string &v) {
     size_t digits = v.find_first_not_of("+-") == 1 ? 1 : 0;
@@ -184,6 +181,9 @@ static bool OutOfRange(const std::string &v, size_t vertexCount, std::string *er
     return true;
 }
 
+// One corner of a face, `v`, `v/vt`, `v//vn` or `v/vt/vn`: the vertex it names, counted from 1,
+// or back from the last vertex read so far if negative (-1 is the last one). The texture and
+// normal indices are not used, but must be whole numbers, of any size, where they are written.
 static bool ReadCorner(const std::string &corner, size_t vertexCount, size_t *vertex,
                        std::string *error) {
     size_t slash = corner.find('/');
@@ -193,10 +193,10 @@ static bool ReadCorner(const std::string &corner, size_t vertexCount, size_t *ve
     std::string vn = second == std::string::npos ? "" : rest.substr(second + 1);
     int index;
     std::string v = corner.substr(0, slash);
-    if (!ParseWholeNumber(v, -INT_MAX, INT_MAX, &index, error) && OutOfRange(v, vertexCount, error))
+    bool read = ParseWholeNumber(v, -INT_MAX, INT_MAX, &index, error);
+    if (!read && OutOfRange(v, vertexCount, error))
         return false;
-    if (!ParseWholeNumber(v, -INT_MAX, INT_MAX, &index, error) ||
-        (!vt.empty() && !WellFormedIndex(vt)) || // (vt and vn are read past, never used)
+    if (!read || (!vt.empty() && !WellFormedIndex(vt)) || // (vt and vn are read past, never used)
         (!vn.empty() && !WellFormedIndex(vn))) {
         *error = "f: bad corner " + Shown(corner) + " (expected v, v/vt, v//vn or v/vt/vn)";
         return false;
