@@ -104,7 +104,7 @@ bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, rea
 // (a - c) x (p - c) all point the way n does, compared on the coordinate where n is largest
 // (the other two can be 0 for a triangle seen edge-on). The handout dots each with n instead;
 // for p on the plane each cross product is parallel to n, so the sign is the same up to
-// rounding, from two products instead of nine. Not watertight: p is rounded, and each
+// rounding, from three products instead of nine. Not watertight: p is rounded, and each
 // triangle rounds its shared edge its own way. Its point's error bound is measured: how far
 // o + t d is from the plane, plus its own rounding.
 bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax,

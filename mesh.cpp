@@ -77,7 +77,8 @@ static bool ParseMeshStep(const std::vector<std::string> &tokens, size_t *k, Mes
     size_t count = word == "scale" ? 1 : word == "rotate" ? 2 : word == "translate" ? 3 : 0;
     if (count == 0) {
         *error = "unknown transform word " + Shown(word) +
-                 " (expected scale, rotate or translate; a file name may not contain spaces)";
+                 " (expected scale, rotate or translate; if the file name has a space, that is "
+                 "why: file names may not contain spaces)";
         return false;
     }
     if (*k + count >= tokens.size()) {
@@ -172,13 +173,15 @@ static bool WellFormedIndex(const std::string &v) {
     return v.size() > digits && v.find_first_not_of("0123456789", digits) == std::string::npos;
 }
 
-// An index too large for an int is still a well-formed one, and out of range: it is said so.
-static bool OutOfRange(const std::string &v, size_t vertexCount, std::string *error) {
-    if (!WellFormedIndex(v))
-        return false;
-    *error = "f: vertex index " + v + " is out of range (" + std::to_string(vertexCount) +
-             " vertices read so far; the first is 1)";
-    return true;
+// The value of a well-formed index, leading zeros and all. Its size is kept up to 10^15, beyond
+// any count of vertices: an index of more digits than that is out of range either way.
+static long long IndexValue(const std::string &v) {
+    size_t first = v[0] == '+' || v[0] == '-' ? 1 : 0;
+    const long long kBeyond = 1000000000000000LL;
+    long long value = 0;
+    for (size_t k = first; k < v.size(); k++)
+        value = std::min(kBeyond, value * 10 + (v[k] - '0'));
+    return v[0] == '-' ? -value : value;
 }
 
 // One corner of a face, `v`, `v/vt`, `v//vn` or `v/vt/vn`: the vertex it names, counted from 1,
@@ -191,20 +194,17 @@ static bool ReadCorner(const std::string &corner, size_t vertexCount, size_t *ve
     size_t second = rest.find('/');
     std::string vt = rest.substr(0, second);
     std::string vn = second == std::string::npos ? "" : rest.substr(second + 1);
-    int index;
     std::string v = corner.substr(0, slash);
-    bool read = ParseWholeNumber(v, -INT_MAX, INT_MAX, &index, error);
-    if (!read && OutOfRange(v, vertexCount, error))
-        return false;
-    if (!read || (!vt.empty() && !WellFormedIndex(vt)) || // (vt and vn are read past, never used)
-        (!vn.empty() && !WellFormedIndex(vn))) {
+    if (!WellFormedIndex(v) || (!vt.empty() && !WellFormedIndex(vt)) || // (vt and vn are read
+        (!vn.empty() && !WellFormedIndex(vn))) {                        // past, never used)
         *error = "f: bad corner " + Shown(corner) + " (expected v, v/vt, v//vn or v/vt/vn)";
         return false;
     }
-    long long k = index > 0 ? index - 1LL : (long long)vertexCount + index;
+    long long index = IndexValue(v);
+    long long k = index > 0 ? index - 1 : (long long)vertexCount + index;
     if (index == 0 || k < 0 || k >= (long long)vertexCount) {
-        *error = "f: vertex index " + std::to_string(index) + " is out of range (" +
-                 std::to_string(vertexCount) + " vertices read so far; the first is 1)";
+        *error = "f: vertex index " + v + " is out of range (" + std::to_string(vertexCount) +
+                 " vertices read so far; the first is 1)";
         return false;
     }
     *vertex = (size_t)k;

@@ -90,10 +90,10 @@ static bool Faces(const Scene *scene, const Emitter *e, const RayHit *hit, vec3 
 }
 
 // How far past p (t = 1) EmitterVisible looks first. The ray meets e at t = 1 to within the
-// rounding of p's coordinates against its distance, about u |p| / |p - o|: far less than this in
-// double unless e is some 2^-30 of its coordinates' size away, and in float unless it is some
-// 1/16 of it. Nearer than that the first search may miss e, and the second, to infinity, finds
-// it: the same answer, later.
+// rounding of p's coordinates against its distance, about u |p| / |p - o|: an eighth of this or
+// less in double unless e is nearer than some 2^-30 of its coordinates' size, and in float unless
+// it is nearer than about half of it. Nearer than that the first search may miss e, and the second,
+// to infinity, finds it: the same answer, later.
 const real kPastEmitter = real(0x1p-20);
 
 // Whether nothing stands between the shaded hit and the point p of emitter e, which faces it:

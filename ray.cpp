@@ -53,13 +53,13 @@ static bool LoadScene(const std::string &name, Scene *scene, std::string *defaul
 // The line of --stats that says how the triangles were searched.
 static void PrintLayout(const Scene *scene, double commitSeconds) {
     const SceneLayout *layout = &scene->layout;
+    if (scene->triangles.empty()) { // (--layout bvh too: there is nothing to build a tree over)
+        fprintf(stderr, "triangles: none\n");
+        return;
+    }
     if (!LayoutIsCurrent(scene)) {
         fprintf(stderr, "triangles: %zu, tested one by one (the chosen method)\n",
                 scene->triangles.size());
-        return;
-    }
-    if (scene->triangles.empty()) { // (--layout bvh too: there is nothing to build a tree over)
-        fprintf(stderr, "triangles: none\n");
         return;
     }
     fprintf(stderr, "triangles: %zu in %zu blocks of %d, ", scene->triangles.size(),

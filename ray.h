@@ -426,7 +426,7 @@ struct RenderSettings {
     int threads;     // worker threads; the image never depends on it
     Methods methods; // the numerical methods (kRobustMethods, or as --methods and co. choose)
     ProgressReport progress; // called every half second of a render that runs that long, and
-                             // at its end; nullptr: none (Render itself never prints)
+                             // then once at its end; nullptr: none (Render itself never prints)
     Effects effects;         // filled by PlanRender
     Camera camera;           // the scene's camera for this image size, filled by PlanRender
     PathMethods path;        // how `shading path` samples (ignored by the other shadings)

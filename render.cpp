@@ -19,7 +19,7 @@
 // Rounding half away from zero, as std::lround does, without the library call (three of them a
 // pixel): v - whole is exact (whole is v with its fraction cut off, so the difference is that
 // fraction), where the shortcut (int)(v + 0.5) is not: v + 0.5 can round up to the next integer,
-// as it does for the largest double below 0.5.
+// as it does for the largest float below 0.5, which c * 255 reaches in the float build.
 uint8_t ToByte(real c) {
     if (!(c > 0))
         return 0;

@@ -62,6 +62,8 @@ static void TestObjFaces() {
          "v 1 2 -1\nv 2 4 -2\nv 3 6 -3\nf -3 -2 -1\nv 4 8 -4\nf -3 -2 -1\n", "1 2 3, 2 3 4"},
         {"v/vt, v//vn and v/vt/vn",
          five + "f 1/1 2/2 3/3\nf 1//7 2//8 3//9\nf 3/1/1 4/2/2 5/-1/3\n", "1 2 3, 1 2 3, 3 4 5"},
+        {"indices with leading zeros, and with a sign", five + "f 000000000001 +2 -000003\n",
+         "1 2 3"},
         {"vt and vn indices are read past, whatever their size",
          five + "f 1/99999999999 2//-99999999999 3/+1/0\n", "1 2 3"},
         {"degenerate faces are kept", five + "f 1 1 2\nf 1 2 3 3\n", "1 1 2, 1 2 3, 1 3 3"},
@@ -260,8 +262,8 @@ static void TestMeshStatementErrors(const std::string &dir) {
          "material 'quad.obj' is not defined (define it above; a mesh's file name may not "
          "contain spaces)"},
         {"material m\nmaterial quad.obj\nmesh my quad.obj m\n", 3,
-         "unknown transform word 'm' (expected scale, rotate or translate; a file name may not "
-         "contain spaces)"},
+         "unknown transform word 'm' (expected scale, rotate or translate; if the file name has a "
+         "space, that is why: file names may not contain spaces)"},
     };
     for (const BadObj &b : bad) {
         std::string expected = dir + "/sub/s.scene:" + std::to_string(b.line) + ": ";
