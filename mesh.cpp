@@ -167,14 +167,9 @@ static bool ReadVertex(const std::vector<std::string> &tokens, const std::vector
     return true;
 }
 
-// A whole number as written: an optional sign, then digits only, of any length.
-static bool WellFormedIndex(const std::string &v) {
-    size_t digits = v.find_first_not_of("+-") == 1 ? 1 : 0;
-    return v.size() > digits && v.find_first_not_of("0123456789", digits) == std::string::npos;
-}
-
-// The value of a well-formed index, leading zeros and all. Its size is kept up to 10^15, beyond
-// any count of vertices: an index of more digits than that is out of range either way.
+// The value of an index written as a whole number (IsWholeNumber), leading zeros and all. Its size
+// is kept up to 10^15, beyond any count of vertices: an index of more digits than that is out of
+// range either way.
 static long long IndexValue(const std::string &v) {
     size_t first = v[0] == '+' || v[0] == '-' ? 1 : 0;
     const long long kBeyond = 1000000000000000LL;
@@ -195,8 +190,8 @@ static bool ReadCorner(const std::string &corner, size_t vertexCount, size_t *ve
     std::string vt = rest.substr(0, second);
     std::string vn = second == std::string::npos ? "" : rest.substr(second + 1);
     std::string v = corner.substr(0, slash);
-    if (!WellFormedIndex(v) || (!vt.empty() && !WellFormedIndex(vt)) || // (vt and vn are read
-        (!vn.empty() && !WellFormedIndex(vn))) {                        // past, never used)
+    if (!IsWholeNumber(v) || (!vt.empty() && !IsWholeNumber(vt)) || // (vt and vn are read
+        (!vn.empty() && !IsWholeNumber(vn))) {                      // past, never used)
         *error = "f: bad corner " + Shown(corner) + " (expected v, v/vt, v//vn or v/vt/vn)";
         return false;
     }

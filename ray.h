@@ -1141,8 +1141,12 @@ std::string PrintableLine(const std::string &text);
 // Returns false and sets *error for anything else (inf, nan, hexadecimal, trailing characters).
 bool ParseReal(const std::string &token, real *value, std::string *error);
 
-// Reads a whole number token (optional sign, decimal digits) in [lo, hi]; false with *error
-// otherwise. Shared by the scene reader and the command line.
+// Whether a token is written as a whole number: an optional sign, then decimal digits, of any
+// length.
+bool IsWholeNumber(const std::string &token);
+
+// Reads a whole number token (IsWholeNumber) in [lo, hi]; false with *error otherwise. Shared by
+// the scene reader and the command line.
 bool ParseWholeNumber(const std::string &token, int lo, int hi, int *value, std::string *error);
 
 // ---- scene_file.cpp: scene files (docs/scene-format.md) -----------------------------------------

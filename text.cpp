@@ -166,10 +166,13 @@ bool ParseReal(const std::string &token, real *value, std::string *error) {
     return true;
 }
 
-bool ParseWholeNumber(const std::string &token, int lo, int hi, int *value, std::string *error) {
+bool IsWholeNumber(const std::string &token) {
     size_t k = !token.empty() && (token[0] == '+' || token[0] == '-') ? 1 : 0;
-    bool digits = k < token.size() && token.find_first_not_of("0123456789", k) == std::string::npos;
-    if (!digits) {
+    return k < token.size() && token.find_first_not_of("0123456789", k) == std::string::npos;
+}
+
+bool ParseWholeNumber(const std::string &token, int lo, int hi, int *value, std::string *error) {
+    if (!IsWholeNumber(token)) {
         *error = "not a whole number: " + Shown(token);
         return false;
     }
