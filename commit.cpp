@@ -11,6 +11,7 @@
 // is the same whoever builds what. Nothing here changes an answer: the kernel returns the plain
 // loop's bits.
 #include "ray.h"
+#include "robust.h"
 
 #include <algorithm>
 #include <atomic>

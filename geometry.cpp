@@ -6,6 +6,7 @@
 // watertight.cpp decides inside or outside, plane.cpp says where; the handouts' own forms of
 // both shapes are in handout.cpp. Compiled with -ffp-contract=off: see the Makefile.
 #include "ray.h"
+#include "robust.h"
 
 #include <algorithm>
 
@@ -79,7 +80,7 @@ static bool SolveSphere(vec3 f, vec3 d, real r, real tMin, real tMax, real *tHit
 
 // The sphere test for a ray and sphere of any size. SolveSphere squares lengths (d.d, r^2,
 // |f x d|^2), which overflow for a light 1e153 away and underflow for a sphere of radius
-// 1e-200. So outside the windows of ray.h it runs in rescaled units: d times 2^kd (largest
+// 1e-200. So outside the windows of numbers.h it runs in rescaled units: d times 2^kd (largest
 // component in [1, 2)) and every length in units of about the radius (times 2^kr, r in [1, 2)).
 // Each root is then t' = t 2^(kr - kd). Powers of two are exact, so where nothing over- or
 // underflowed this gives the very bits of the unscaled arithmetic. No root is discarded as "too
@@ -123,7 +124,7 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
 }
 
 // A ray's direction rescaled to a largest component in [1, 2) when it lies outside
-// kDirectionWindow (ray.h), and its interval with it, so that no shape test squares or divides a
+// kDirectionWindow (numbers.h), and its interval with it, so that no shape test squares or divides a
 // direction of 1e-200 or 1e200 out of range. Scaling d by 2^k scales every t by 2^-k exactly;
 // ScaleBack undoes it. False for a direction that is zero (or not finite): such a ray has no
 // answer.

@@ -5,6 +5,7 @@
 // image, and an existing file stays exactly as it was. What the output path may be is checked
 // before any work is done (CheckOutputPath): never an input of the same run, never a file made
 // read-only; devices and FIFOs are written to directly.
+#include "io.h"
 #include "ray.h"
 
 #include <algorithm>

@@ -4,6 +4,7 @@
 // compiled copies (AVX2 and baseline) inlines all of it.
 #pragma once
 #include "ray.h"
+#include "robust.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #define RT_DISPATCH 1

@@ -5,6 +5,7 @@
 // into the scene's triangles as a fan from its first corner. `v` and `f` are the statements that
 // make geometry; every other statement (texture coordinates, normals, groups, materials, lines,
 // points) is skipped. Errors are values, "MESH:LINE: message", as for scene files.
+#include "io.h"
 #include "ray.h"
 
 #include <algorithm>

@@ -2,6 +2,7 @@
 #ifndef RT_OPTIONS_H
 #define RT_OPTIONS_H
 
+#include "io.h"
 #include "ray.h"
 
 // What the command line asks for; zero or empty means "not given".

@@ -17,6 +17,7 @@
 //      its plane), the same formula again in double-double arithmetic, whose error is about u^2
 //      of the terms. This is what keeps boxes and floors of any length closed.
 #include "ray.h"
+#include "robust.h"
 
 #include <algorithm>
 
@@ -36,7 +37,7 @@ static dvec3 CrossTerms(dvec3 a, dvec3 b) {
 // is a small function whose values stay in registers.
 #define RT_COLD __attribute__((noinline, cold))
 
-// kU, GammaD, kPlainRelativeError and kFirstOrderShare are in ray.h: the kernel's packets
+// kU, GammaD, kPlainRelativeError and kFirstOrderShare are in robust.h: the kernel's packets
 // (plane_lanes.h) compute tier 1 too.
 
 // ---- double-double arithmetic (tier 2) ------------------------------------------------------

@@ -3,6 +3,7 @@
 // `--ray` and `--rays` print the nearest hit of a ray as one JSON line; `--pixel` prints the whole
 // tree of rays behind one pixel. Numbers are printed in the shortest form that reads back
 // exactly.
+#include "io.h"
 #include "ray.h"
 
 #include <cstdio>

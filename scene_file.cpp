@@ -3,7 +3,9 @@
 // One statement a line, `#` comments, tokens between spaces or tabs. Every statement is checked
 // as it is read, and the first problem ends the read with "FILE:LINE: message", the way a
 // compiler reports it. Nothing here prints; the caller decides what to do with the message.
+#include "io.h"
 #include "ray.h"
+#include "robust.h"
 
 #include <cerrno>
 #include <cstdio>

@@ -4,6 +4,7 @@
 // for what it describes. A line is bounded (kMaxLineLength; a comment, from `#` on, is dropped as
 // it is read and may hold anything), a NUL byte elsewhere marks a file that is not text, and a
 // UTF-8 byte-order mark (what Windows Notepad writes) at the start is skipped.
+#include "io.h"
 #include "ray.h"
 
 #include <algorithm>

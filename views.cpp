@@ -3,6 +3,7 @@
 // When the image looks wrong, these show which part is wrong: the normals (is a surface turned
 // the right way?), the depth (is the camera where you think?), which object each pixel sees, how
 // many rays each pixel cost, and the shadow mask (lit, blocked, or turned away from the light).
+#include "io.h"
 #include "ray.h"
 
 #include <algorithm>

@@ -10,6 +10,7 @@
 // certain (0, or NaN from overflow) it is recomputed exactly. Where the ray meets the triangle,
 // t, comes from plane.cpp. No epsilon anywhere.
 #include "ray.h"
+#include "robust.h"
 
 #include <algorithm>
 
@@ -34,7 +35,7 @@ static real EdgeSign(real ax, real ay, real bx, real by) {
 // |d| component, and the shear turns the ray into the +z axis. It depends on the ray only, so
 // the shape loop computes it once for all the triangles. (The paper also swaps kx and ky when
 // d[kz] < 0, to keep the winding for back-face culling. That negates u, v and w together, which
-// changes nothing for a two-sided test, so it is left out.) ShearRayAxes (ray.h) computes it for
+// changes nothing for a two-sided test, so it is left out.) ShearRayAxes (robust.h) computes it for
 // one kz.
 void ShearRay(const Ray *ray, RayShear *shear) {
     int kz = DominantAxis(ray->dir);

@@ -25,6 +25,7 @@
 // kMinSeconds (render only, all threads), with the fastest and the slowest of them beside it
 // (the CSV's last columns, seconds_min and seconds_max); errors are against a converged
 // reference: double, 256 samples per pixel on a grid.
+#include "../io.h"
 #include "../tests/hard_cases.h"
 #include "ray.h"
 #include "svg.h"

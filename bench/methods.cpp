@@ -6,6 +6,7 @@
 // 2/255) at scales 1e-4, 1, 1e4 and 1e6 and moved far from the origin, where a method's failures
 // show as acne, lost shadows and cracks (and, at any scale, as ties: a ray exactly through a
 // shared edge may take either triangle, both right). Prints Markdown.
+#include "../io.h"
 #include "../tests/hard_cases.h"
 #include "../tests/robust_scenes.h"
 #include "svg.h"

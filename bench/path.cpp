@@ -9,6 +9,7 @@
 // machine load; its time is the median, min and max. Writes DIR/path.md (the table and
 // sentences worded from it; two times whose ranges overlap are the same within noise) and
 // DIR/path_SCENE.svg (error against time, log-log).
+#include "../io.h"
 #include "ray.h"
 #include "svg.h"
 

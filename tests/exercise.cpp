@@ -1,5 +1,6 @@
 // tests/exercise.cpp -- one input through the scene reader, the renderer and the probe reader.
 #include "exercise.h"
+#include "../io.h"
 
 // Scenes larger than this are read but not rendered: the fuzzer should spend its time reading.
 static const size_t kMaxShapesToRender = 64;

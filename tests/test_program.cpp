@@ -3,6 +3,7 @@
 // Runs ./ray (or $RAY) in a fresh temporary directory: the default output name, the PNG's size
 // and format, identical bytes for any thread count, the --stats lines, and bad input: exit
 // status 2 (3 for I/O), one `ray: ` line, and no output file touched.
+#include "../io.h"
 #include "test.h"
 
 #include <unistd.h>

@@ -5,6 +5,7 @@
 // scene scaled from 1e-300 to 1e300 (float: 1e-37 to 1e36) with each of the three cameras, and
 // glass of index 1 at grazing incidence. Each runs in double and in float, over that precision's
 // range.
+#include "../io.h"
 #include "robust_scenes.h"
 #include "test.h"
 

@@ -1,0 +1,144 @@
+// io.h -- what goes in and comes out besides the render: image files (image.cpp), lines, tokens
+// and numbers (text.cpp), OBJ meshes (mesh.cpp), probes and ray trees (probe.cpp), debug views
+// (views.cpp).
+#pragma once
+#include "ray.h"
+
+// ---- image.cpp: image files and comparing images ------------------------------------------------
+
+// Whether `output` may be written by a run that reads `inputs`: its name ends in .png or .ppm
+// (or it is a device or FIFO), it is not one of the inputs, and if it exists, it is not a
+// directory or a file without write permission. False with the exit status (2 bad usage, 3 I/O)
+// and *error otherwise. Checked before a render, so a mistake costs no time.
+bool CheckOutputPath(const std::string &output, const std::vector<std::string> &inputs, int *status,
+                     std::string *error);
+
+// Writes *image to path as 8-bit RGB, PNG or binary PPM by the name's extension. A regular file
+// is written through a temporary file renamed into place (a symbolic link is followed), so the
+// path holds either its old contents or the whole new image, also when SIGINT or SIGTERM
+// arrives; a device or FIFO is written to directly. False with *error on failure.
+bool WriteImage(const char *path, const Image *image, std::string *error);
+
+// Reads any PNG file into *image as 8-bit RGB. Returns false and sets *error on failure.
+bool ReadPng(const char *path, Image *image, std::string *error);
+
+// How two images of the same size differ, channel values in 0..255.
+struct ImageDifference {
+    double rmse;     // root mean square difference over all channels
+    double psnr;     // 20 log10(255 / rmse) in dB; infinite for identical images
+    int largest;     // largest difference of one channel
+    long pixelsOver; // pixels with a channel differing by more than the tolerance
+};
+
+// A heat scale for x in [0, 1]: black, red, yellow, white.
+color HeatColor(real x);
+
+// Compares a and b (same size) and draws *heatmap: black where equal, through red and yellow to
+// white for the largest possible difference. Returns false if the sizes differ.
+bool CompareImages(const Image *a, const Image *b, int tolerance, ImageDifference *difference,
+                   Image *heatmap);
+
+// ---- text.cpp: lines, tokens and numbers (scene files, probe lines, the command line) --------
+
+// The longest line a scene file or probe file may have: a statement is a keyword and at most
+// fifteen numbers, so this leaves room for any comment, and a one-line file of 250 MB is refused
+// at once instead of being held in memory.
+const size_t kMaxLineLength = 65536;
+
+enum LineStatus {
+    LINE_READ,     // *line holds the next line, without its \n or \r\n
+    LINE_END,      // no more lines
+    LINE_TOO_LONG, // the line was longer than kMaxLineLength (and has been skipped)
+    LINE_BAD       // a NUL byte (not a text file) or a read error: stop reading
+};
+
+// Reads line number `lineNumber` (from 1) of a text file, without its comment (from `#` on); on
+// line 1 a UTF-8 byte-order mark is skipped. Sets *error for LINE_TOO_LONG and LINE_BAD.
+LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::string *error);
+
+// Splits a line into tokens at spaces and tabs, up to a `#` (the rest is a comment).
+void Tokenize(const std::string &line, std::vector<std::string> *tokens);
+
+// A token as it may be shown in a message: quoted, at most 40 characters, unprintable bytes as ?.
+std::string Shown(const std::string &token);
+
+// A message as one printable line: control characters (C0, DEL and C1, and the Unicode line and
+// paragraph separators) and bytes that are not UTF-8 written as escapes, \n or \xHH a byte.
+std::string PrintableLine(const std::string &text);
+
+// Reads a number token: decimal digits with an optional sign, point and exponent, finite.
+// Returns false and sets *error for anything else (inf, nan, hexadecimal, trailing characters).
+bool ParseReal(const std::string &token, real *value, std::string *error);
+
+// Whether a token is written as a whole number: an optional sign, then decimal digits, of any
+// length.
+bool IsWholeNumber(const std::string &token);
+
+// Reads a whole number token (IsWholeNumber) in [lo, hi]; false with *error otherwise. Shared by
+// the scene reader and the command line.
+bool ParseWholeNumber(const std::string &token, int lo, int hi, int *value, std::string *error);
+
+// ---- mesh.cpp: Wavefront OBJ meshes (docs/scene-format.md) --------------------------------------
+
+// One transform word of a `mesh` statement; the words move every vertex in the order written.
+enum MeshStepKind { MESH_SCALE, MESH_ROTATE, MESH_TRANSLATE };
+struct MeshStep {
+    MeshStepKind kind;
+    real factor;       // MESH_SCALE: the uniform factor, > 0
+    int axis;          // MESH_ROTATE: 0, 1, 2 for x, y, z
+    real cosine, sine; // MESH_ROTATE: of the angle (exactly 0 and +-1 for multiples of 90)
+    vec3 offset;       // MESH_TRANSLATE
+};
+
+// Reads the transform words tokens[first..]: `scale S`, `rotate x|y|z DEGREES`, `translate X Y
+// Z`, any number of each. Returns false with *error for an unknown word or a bad value.
+bool ParseMeshTransform(const std::vector<std::string> &tokens, size_t first,
+                        std::vector<MeshStep> *steps, std::string *error);
+
+// The vertex p moved by every step, in order.
+vec3 TransformVertex(const std::vector<MeshStep> &steps, vec3 p);
+
+// Reads a Wavefront OBJ file, open as `file` and called meshName in messages: every face as
+// triangles of `material` (a fan from its first corner), its vertices moved by `steps`,
+// appended to *triangles, at most maxTriangles of them. False with *error = "MESH:LINE: message"
+// for a malformed line, a file without faces, or more triangles than that.
+bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<MeshStep> &steps,
+             size_t maxTriangles, std::vector<Triangle> *triangles, std::string *error);
+
+// A mesh statement's PATH as rt opens it: relative to the folder of the scene file that names it
+// (an absolute path as given).
+std::string MeshPath(const char *sceneFile, const std::string &path);
+
+// The statement `mesh PATH MATERIAL [transform words]` on line `line` of sceneFile, its material
+// already found: reads the file into scene->triangles (at most maxTriangles) and records it in
+// scene->meshFiles. False with *error: "SCENE:LINE: message" for the statement or a file that
+// cannot be opened, "MESH:LINE: message" for the file's own content.
+bool ReadMeshStatement(const std::vector<std::string> &tokens, const char *sceneFile, int line,
+                       int material, size_t maxTriangles, Scene *scene, std::string *error);
+
+// ---- probe.cpp: probes and ray trees (docs/command-line.md) -------------------------------------
+
+// Reads a probe line `OX OY OZ DX DY DZ`. Returns false with *error for a bad line; sets *blank
+// (and returns true) for a blank or comment line.
+bool ParseProbeLine(const std::string &line, Ray *ray, bool *blank, std::string *error);
+
+// The JSON line for the nearest hit of `ray` with t > 0.
+std::string ProbeRayJson(const Scene *scene, const RenderSettings *settings, const Ray *ray);
+
+// The JSON line for a probe line that could not be read.
+std::string ProbeErrorJson(const std::string &message);
+
+// The JSON ray tree of pixel (x, y)'s centre ray.
+std::string PixelTreeJson(const Scene *scene, const RenderSettings *settings, int x, int y);
+
+// ---- views.cpp: debug views -----------------------------------------------------------------
+
+enum ViewKind { VIEW_NORMAL, VIEW_DEPTH, VIEW_ID, VIEW_COST, VIEW_SHADOW };
+
+// Looks up a view by its command-line name; false if there is none. ViewName is the reverse.
+bool FindView(const std::string &name, ViewKind *view);
+const char *ViewName(ViewKind view);
+
+// Renders a debug view of the primary hits instead of the lit image.
+void RenderView(const Scene *scene, const RenderSettings *settings, ViewKind view, Image *image,
+                RayStats *stats);

@@ -1,0 +1,208 @@
+// numbers.h -- the numbers and vectors rt computes with, and the exact rescaling that keeps
+// them in range.
+//
+// `real` is double, or float when built with -DRT_FLOAT (the ray_float program). Every header of
+// rt includes this one first, through ray.h.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+// ---- numbers -------------------------------------------------------------------------------
+
+#ifdef RT_FLOAT
+typedef float real;
+#else
+typedef double real;
+#endif
+
+// No upper bound on a ray parameter.
+const real kInfinity = std::numeric_limits<real>::infinity();
+
+// pi, rounded to `real` (the path tracer's densities and areas).
+const real kPi = real(3.14159265358979323846);
+
+// Always inlined: the speed machinery's small helpers (the kernel, the BVH build, the plane
+// test's common case), where a call would cost more than the work (GCC and clang).
+#define RT_INLINE inline __attribute__((always_inline))
+
+// Unit roundoff u: the largest relative error of one correctly rounded operation (half an ulp
+// of 1). Every tolerance in rt is a multiple of u derived from an error bound, never a fixed
+// distance in scene units, so the program behaves the same at any scene scale.
+const real kUnitRoundoff = std::numeric_limits<real>::epsilon() * real(0.5);
+
+// Gamma(n) = n u / (1 - n u) bounds the relative error of n chained floating-point operations
+// (Higham, "Accuracy and Stability of Numerical Algorithms", 2002, Lemma 3.1; pbrt-v4 §6.8.1).
+inline real Gamma(int n) { return (n * kUnitRoundoff) / (1 - n * kUnitRoundoff); }
+
+// One step of a counter-based hash: the word added to the state, then SplitMix64's finaliser
+// (Steele, Lea & Flood, "Fast Splittable Pseudorandom Number Generators", OOPSLA 2014). Folding
+// the numbers that name a sample (pixel, sample, bounce, ...) in turn gives random bits that
+// depend on nothing else, so the image never depends on which thread drew them.
+inline uint64_t MixWord(uint64_t z, uint64_t word) {
+    z += word + 0x9e3779b97f4a7c15ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+// ---- vectors -------------------------------------------------------------------------------
+
+struct vec2 {
+    real x, y;
+};
+
+struct vec3 {
+    real x, y, z;
+};
+
+typedef vec3 color; // r, g, b in x, y, z; 1 is full intensity
+
+inline vec3 operator+(vec3 a, vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline vec3 operator-(vec3 a, vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline vec3 operator-(vec3 a) { return {-a.x, -a.y, -a.z}; }
+inline vec3 operator*(real s, vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
+inline vec3 operator*(vec3 a, vec3 b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+inline real Dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline vec3 Cross(vec3 a, vec3 b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline real Length(vec3 a) { return std::sqrt(Dot(a, a)); }
+inline vec3 Normalize(vec3 a) { return (1 / Length(a)) * a; }
+// The mirror direction of d about the unit normal n: r = d - 2 (d.n) n (the assignment handout)
+inline vec3 Reflect(vec3 d, vec3 n) { return d - (2 * Dot(d, n)) * n; }
+inline vec3 Abs(vec3 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
+// The larger of each pair, as std::fmax answers (a NaN loses to a number; of +0 and -0, where
+// fmax may return either, the first), written out: std::fmax is a library call, 1% of the
+// assignment's time.
+inline real FMax(real a, real b) { return a >= b || b != b ? a : b; }
+inline vec3 Max(vec3 a, vec3 b) { return {FMax(a.x, b.x), FMax(a.y, b.y), FMax(a.z, b.z)}; }
+// a.x, a.y or a.z for axis 0, 1, 2 (the boxes of the committed scene and the BVH go axis by
+// axis): an indexed load, not a chain of branches
+inline real Component(vec3 a, int axis) {
+    const real c[3] = {a.x, a.y, a.z};
+    return c[axis];
+}
+inline bool IsFinite(vec3 a) {
+    return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+}
+inline real MaxComponent(vec3 a) { // of |a|, for finite a
+    real m = std::fabs(a.x) > std::fabs(a.y) ? std::fabs(a.x) : std::fabs(a.y);
+    return m > std::fabs(a.z) ? m : std::fabs(a.z);
+}
+
+// ---- numerics: exact rescaling by powers of two (the shape tests, shading, cameras) --------
+// Multiplying by a power of two changes only the exponent, so it is exact unless the result
+// leaves the range of numbers. rt rescales any vector whose squares could overflow or underflow
+// (a direction of 1e200 or 1e-200, a sphere of radius 1e-200) to a largest component in [1, 2),
+// computes there, and scales the answer back: the same bits as unscaled arithmetic would give
+// had it not overflowed.
+
+// floor(log2 |x|) for finite x != 0: the exponent field, read directly (std::ilogb is a library
+// call, and the shape loop asks for it on every ray); subnormal x takes the library's path.
+inline int BinaryExponent(real x) {
+#ifdef RT_FLOAT
+    uint32_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    int field = (int)((bits >> 23) & 0xff);
+    return field != 0 ? field - 127 : std::ilogb(x);
+#else
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    int field = (int)((bits >> 52) & 0x7ff);
+    return field != 0 ? field - 1023 : std::ilogb(x);
+#endif
+}
+
+// 2^k: the exponent field written directly when 2^k is a normal number, else the library's.
+inline real PowerOfTwo(int k) {
+    real x;
+#ifdef RT_FLOAT
+    if (k < -126 || k > 127)
+        return std::ldexp(real(1), k);
+    uint32_t bits = (uint32_t)(k + 127) << 23;
+#else
+    if (k < -1022 || k > 1023)
+        return std::ldexp(real(1), k);
+    uint64_t bits = (uint64_t)(k + 1023) << 52;
+#endif
+    memcpy(&x, &bits, sizeof x);
+    return x;
+}
+
+// The number next to x toward +infinity (up) or -infinity: std::nextafter(x, +-infinity), bit
+// for bit, without the library call (every ray that leaves a surface and every tie in the shape
+// loop asks for it). Away from 0 the neighbour is the bit pattern one step further from or
+// nearer to 0; from 0 it is the smallest subnormal.
+inline real NextAfter(real x, bool up) {
+    if (x != x || (x == (up ? kInfinity : -kInfinity)))
+        return x; // NaN, or already the end it moves toward
+    if (x == 0)
+        return up ? std::numeric_limits<real>::denorm_min()
+                  : -std::numeric_limits<real>::denorm_min();
+#ifdef RT_FLOAT
+    uint32_t bits;
+#else
+    uint64_t bits;
+#endif
+    memcpy(&bits, &x, sizeof bits);
+    bits = (x > 0) == up ? bits + 1 : bits - 1;
+    memcpy(&x, &bits, sizeof x);
+    return x;
+}
+
+// x * 2^k and v * 2^k for any k (in two exact steps when 2^k itself is out of range).
+inline real ScaleByPowerOfTwo(real x, int k) {
+    const int kMax = std::numeric_limits<real>::max_exponent - 1;
+    if (k > -kMax && k < kMax)
+        return PowerOfTwo(k) * x;
+    return PowerOfTwo(k - k / 2) * (PowerOfTwo(k / 2) * x);
+}
+inline vec3 ScaleByPowerOfTwo(vec3 v, int k) {
+    return {ScaleByPowerOfTwo(v.x, k), ScaleByPowerOfTwo(v.y, k), ScaleByPowerOfTwo(v.z, k)};
+}
+
+// Sizes inside these windows can be squared and multiplied together without leaving the normal
+// range of `real`, so the shape tests rescale only what lies outside: a direction whose largest
+// component is within 2^+-kDirectionWindow (2^+-64 in double, 2^+-8 in float), a radius or a
+// distance from a sphere's centre within 2^+-kLengthWindow (2^+-256, 2^+-32).
+const int kDirectionWindow = std::numeric_limits<real>::max_exponent / 16;
+const int kLengthWindow = 4 * kDirectionWindow;
+inline bool WithinWindow(real m, int window) {
+    return m >= PowerOfTwo(-window) && m <= PowerOfTwo(window);
+}
+
+// Whether a ray's direction is searched for as it is: inside the direction window, which
+// ScaleRay (geometry.cpp) leaves alone, and which the packets (packet.cpp) require.
+inline bool SearchedAsIs(vec3 dir) { return WithinWindow(MaxComponent(dir), kDirectionWindow); }
+
+// The power of two that brings v's largest component into [1, 2): v * 2^UnitExponent(v). 0 for
+// a zero or non-finite v (nothing to rescale).
+inline int UnitExponent(vec3 v) {
+    real m = MaxComponent(v);
+    return m > 0 && std::isfinite(m) ? -BinaryExponent(m) : 0;
+}
+
+// |v| for v of any finite size, by the same rescaling.
+inline real SafeLength(vec3 v) {
+    int k = UnitExponent(v);
+    return ScaleByPowerOfTwo(Length(ScaleByPowerOfTwo(v, k)), -k);
+}
+
+// A unit vector in the direction of v, for v of any finite size (1e-300 or 1e300), by rescaling
+// before squaring. The zero vector stays zero.
+inline vec3 SafeNormalize(vec3 v) {
+    vec3 w = ScaleByPowerOfTwo(v, UnitExponent(v));
+    real length = Length(w);
+    return length > 0 ? (1 / length) * w : w;
+}
+
+// A vector in double, whatever `real` is: plane.cpp's first tier computes in double.
+struct dvec3 {
+    double x, y, z;
+};

@@ -1,0 +1,174 @@
+// robust.h -- the parts of the robust triangle test that several files share: boxes along a
+// ray (the window a triangle's hit lies in, and the BVH's box test), the plane's t and its
+// error bound (plane.cpp), the watertight test's shear (watertight.cpp).
+#pragma once
+#include "ray.h"
+
+// ---- boxes along a ray (plane.cpp and the BVH walk, kernel_walk.h) ---------------------------
+
+// Where a ray's line passes through an axis-aligned box, widened by kBoxAllowance of the
+// coordinates' sizes: the box test of the BVH, and the window a triangle's hit must lie in.
+// Both use this one function, with the same rounding, so a node's window always holds the
+// windows of the triangles below it (each step is monotonic: a larger box, larger bounds). 128 u
+// is about three times the widest error bound of a triangle's hit point (plane.cpp), so a hit on
+// the triangle always lies inside its window.
+const real kBoxAllowance = 128 * kUnitRoundoff;
+
+// The per-ray half: origin, 1/d per axis (an infinity for a 0 component), the allowance for the
+// origin's size, and which end of each slab the ray meets first (the sign of 1/d).
+struct SlabRay {
+    vec3 origin, inverse;
+    real originPad;   // OriginPad: the widening that comes with the ray
+    bool backward[3]; // 1/d < 0 on that axis: the ray meets hi before lo
+};
+// The widening that comes with the ray: kBoxAllowance of its origin's size, and 4 times the
+// smallest normal number, which stands in for sizes whose allowance would underflow (the
+// rounding of numbers below it is absolute, 2^-1074 in double, far below this floor).
+inline real OriginPad(const Ray *ray) {
+    return kBoxAllowance * MaxComponent(ray->origin) + 4 * std::numeric_limits<real>::min();
+}
+inline SlabRay MakeSlabRay(const Ray *ray) {
+    SlabRay r = {ray->origin, {1 / ray->dir.x, 1 / ray->dir.y, 1 / ray->dir.z}, OriginPad(ray), {}};
+    r.backward[0] = std::signbit(r.inverse.x), r.backward[1] = std::signbit(r.inverse.y);
+    r.backward[2] = std::signbit(r.inverse.z);
+    return r;
+}
+
+// The interval of t in which the line is inside the box lo..hi, whose largest |coordinate| is
+// `size`, widened on every side by kBoxAllowance (size + the origin's size). A 0 * infinity (a
+// ray along a box face) is NaN and restricts nothing, nor does a box of non-finite size. The
+// ends are taken by the sign of 1/d, not compared, so the loop has no branch to mispredict.
+inline void SlabInterval(const real lo[3], const real hi[3], real size, const SlabRay *r,
+                         real *tNear, real *tFar) {
+    real pad = kBoxAllowance * size + r->originPad;
+    const real o[3] = {r->origin.x, r->origin.y, r->origin.z};
+    const real inv[3] = {r->inverse.x, r->inverse.y, r->inverse.z};
+    real near = -kInfinity, far = kInfinity;
+    for (int i = 0; i < 3; i++) {
+        real a = ((lo[i] - pad) - o[i]) * inv[i], b = ((hi[i] + pad) - o[i]) * inv[i];
+        real first = r->backward[i] ? b : a, last = r->backward[i] ? a : b;
+        near = first > near ? first : near; // (NaN compares false: no restriction)
+        far = last < far ? last : far;
+    }
+    *tNear = near, *tFar = far;
+}
+
+// A triangle's bounding box (Box). A corner that is not finite makes the box infinite: it holds
+// every point, so no window or node that holds it can exclude a hit.
+inline Box TriangleBox(const Triangle *tri) {
+    vec3 a = tri->a, b = tri->b, c = tri->c;
+    if (!IsFinite(a) || !IsFinite(b) || !IsFinite(c))
+        return {{-kInfinity, -kInfinity, -kInfinity}, {kInfinity, kInfinity, kInfinity}, kInfinity};
+    auto least = [](real x, real y, real z) { return x < y ? (x < z ? x : z) : (y < z ? y : z); };
+    auto most = [](real x, real y, real z) { return x > y ? (x > z ? x : z) : (y > z ? y : z); };
+    Box box = {{least(a.x, b.x, c.x), least(a.y, b.y, c.y), least(a.z, b.z, c.z)},
+               {most(a.x, b.x, c.x), most(a.y, b.y, c.y), most(a.z, b.z, c.z)},
+               0};
+    real lo = MaxComponent({box.lo[0], box.lo[1], box.lo[2]});
+    real hi = MaxComponent({box.hi[0], box.hi[1], box.hi[2]});
+    box.size = lo > hi ? lo : hi;
+    return box;
+}
+
+// ---- plane.cpp: where a ray meets a triangle's plane -------------------------------------------
+
+void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp);
+
+// The hit record of a triangle whose interior the ray passes through (plane.cpp): t from the
+// triangle's plane, accurate for triangles of any length, and the point o + t d; false if t is
+// outside (tMin, tMax) or within its rounding error of 0 (the ray has just left this plane).
+// `setUp` is the triangle's SetUpTriangle, or null to compute it here.
+bool RobustPlaneHit(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray, real tMin,
+                    real tMax, RayHit *hit);
+
+// Tier 1 of the plane's t (plane.cpp), whose numbers the kernel's packets share (plane_lanes.h):
+// the unit roundoff of double and gamma(n) for it (Higham 2002, §3.1; Gamma has them for `real`).
+constexpr double kU = std::numeric_limits<double>::epsilon() / 2;
+constexpr double GammaD(int n) { return n * kU / (1 - n * kU); }
+
+// Tier 2 is taken when tier 1's bound is wider than this share of t: then the hit point
+// o + t d, which inherits the error of t, would sit farther off the surface than a few roundings
+// of its coordinates, and probes would print digits that are not known. 32 u of `real` is twice
+// what tier 1 gives a ray that meets an axis-aligned wall head-on, so ordinary hits stay in tier 1.
+const double kPlainRelativeError = 32 * (double)kUnitRoundoff;
+
+// Tier 1's bound is first order; FirstOrderHolds (plane.cpp) believes it only while the normal's
+// error and n.d's error are each within this share of what they are errors of.
+const double kFirstOrderShare = 1.0 / 1024;
+
+// t and a bound on |t - t*|, where t* is the exact t of the exact plane through a, b, c.
+struct PlaneT {
+    double t, error;
+};
+
+// What tier 1 alone makes of a ray (QuickPlaneT, plane.cpp): a miss, a hit, or unsure, for
+// RobustPlaneHit to decide from the start.
+enum QuickAnswer { PLANE_MISS, PLANE_HIT, PLANE_UNSURE };
+
+// RobustPlaneHit's record for the t it settled on: the point o + t d, which lies on the plane to
+// within its bound (the rounding of o + t d itself, and t's error times |d|), the normal turned
+// toward the ray. False, and *hit untouched, where the point leaves the range of numbers.
+inline bool PlaneHitRecord(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray,
+                           PlaneT plane, RayHit *hit) {
+    real t = (real)plane.t;
+    vec3 along = t * ray->dir;
+    if (!IsFinite(ray->origin + along)) // t finite, but the point beyond the range of numbers
+        return false;
+    SetFaceNormal(ray, setUp->normal, hit); // (a miss leaves *hit as it was)
+    hit->t = t;
+    hit->point = ray->origin + along;
+    real tError = (real)plane.error + Gamma(1) * t;
+    hit->pointError = Gamma(2) * (Abs(hit->point) + Abs(along)) + tError * Abs(ray->dir);
+    hit->material = tri->material;
+    hit->shape = SHAPE_TRIANGLE;
+    hit->awayShare = setUp->awayShare;
+    return true;
+}
+
+// ---- watertight.cpp: the watertight triangle test ----------------------------------------------
+
+// The axis of d's largest component (of equal ones, the later axis), which the watertight
+// test's shear turns into z (ShearRay).
+inline int DominantAxis(vec3 d) {
+    vec3 ad = Abs(d);
+    return ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+}
+
+// The per-ray half of the watertight test, shared by every triangle the ray meets: kz, the axis
+// of the direction's largest component, renamed z; the ray origin with its axes renamed
+// (kz + 1, kz + 2, kz); and the shear that turns the direction into the +z axis.
+struct RayShear {
+    int kz;
+    vec3 origin;
+    real sx, sy; // d[kx]/d[kz] and d[ky]/d[kz]
+};
+void ShearRay(const Ray *ray, RayShear *shear);
+
+// v with its axes renamed (kx, ky, kz) = (kz + 1, kz + 2, kz) mod 3. A rotation keeps the
+// triangles' winding, whatever kz is. kz is a compile-time constant, so every component below is
+// a plain field, not an indexed load: the triangle loop is compiled once per axis (HitShapes).
+template <int kz> inline vec3 RenameAxes(vec3 v) {
+    if constexpr (kz == 0)
+        return {v.y, v.z, v.x};
+    else if constexpr (kz == 1)
+        return {v.z, v.x, v.y};
+    else
+        return v;
+}
+
+// ShearRay for a ray whose kz is known (watertight.cpp explains the shear).
+template <int kz> inline void ShearRayAxes(const Ray *ray, RayShear *shear) {
+    vec3 d = RenameAxes<kz>(ray->dir);
+    *shear = {kz, RenameAxes<kz>(ray->origin), d.x / d.z, d.y / d.z};
+}
+
+// The watertight test of one triangle for a ray whose shear is computed: as IntersectTriangle.
+// `setUp` as for RobustPlaneHit.
+bool IntersectWatertight(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray,
+                         const RayShear *shear, real tMin, real tMax, RayHit *hit);
+
+// The triangle half of the shape loop (HitShapes) for the watertight method: the nearest hit
+// (the first, with anyHit) among triangles[0..n) but `skip`, with t in (tMin, tMax). Compiled once
+// per main axis, with the first step of the test inlined: most triangles end there.
+bool HitWatertightTriangles(const Triangle *triangles, int n, int skip, const Ray *ray,
+                            const RayShear *shear, real tMin, real tMax, bool anyHit, RayHit *hit);
