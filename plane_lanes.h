@@ -40,44 +40,74 @@ struct PlaneRays {
     PlaneLanes tMin, originPad;
 };
 
+// What tier 1 computes first for each lane's ray, and what its checks share: a - o, n.d, t, |d|
+// per axis, and n.d's rounding bound (PlainError's eD, which FirstOrderHolds adds to).
+struct LaneT {
+    PlaneLanes toAx, toAy, toAz, denominator, t;
+    PlaneLanes absDx, absDy, absDz, eD;
+};
+
+// t = n.(a - o) / n.d, lane by lane, as FindPlaneT and QuickPlaneT compute it.
+static RT_INLINE void LanePlaneT(const Triangle *tri, const TriangleSetUp *setUp,
+                                 const PlaneRays *r, LaneT *l) {
+    const dvec3 n = setUp->n;
+    l->toAx = Same(tri->a.x) - r->ox, l->toAy = Same(tri->a.y) - r->oy;
+    l->toAz = Same(tri->a.z) - r->oz;
+    l->denominator = Same(n.x) * r->dx + Same(n.y) * r->dy + Same(n.z) * r->dz;
+    l->t = (Same(n.x) * l->toAx + Same(n.y) * l->toAy + Same(n.z) * l->toAz) / l->denominator;
+    l->absDx = Magnitude(&r->dx), l->absDy = Magnitude(&r->dy), l->absDz = Magnitude(&r->dz);
+    PlaneLanes nx = Same(std::fabs(n.x)), ny = Same(std::fabs(n.y)), nz = Same(std::fabs(n.z));
+    l->eD = GammaD(3) * (nx * l->absDx + ny * l->absDy + nz * l->absDz);
+}
+
+// PlainError (plane.cpp), lane by lane: t's first-order bound.
+static RT_INLINE PlaneLanes LaneError(const TriangleSetUp *setUp, const PlaneRays *r,
+                                      const LaneT *l) {
+    const dvec3 n = setUp->n, e = setUp->nError;
+    PlaneLanes nx = Same(std::fabs(n.x)), ny = Same(std::fabs(n.y)), nz = Same(std::fabs(n.z));
+    PlaneLanes eN = GammaD(4) * (nx * Magnitude(&l->toAx) + ny * Magnitude(&l->toAy) +
+                                 nz * Magnitude(&l->toAz));
+    PlaneLanes cx = l->toAx - l->t * r->dx, cy = l->toAy - l->t * r->dy;
+    PlaneLanes cz = l->toAz - l->t * r->dz, absT = Magnitude(&l->t);
+    return 2 * ((eN + absT * l->eD +
+                 (Same(e.x) * Magnitude(&cx) + Same(e.y) * Magnitude(&cy) +
+                  Same(e.z) * Magnitude(&cz))) /
+                Magnitude(&l->denominator)) +
+           GammaD(1) * absT;
+}
+
+// WellInside (plane.cpp), lane by lane: o + t d within half the window's widening of the box.
+static RT_INLINE PlaneMask LaneWellInside(const TriangleSetUp *setUp, const PlaneRays *r,
+                                          const LaneT *l) {
+    const Box *box = &setUp->box;
+    PlaneLanes pad = 0.5 * ((double)kBoxAllowance * box->size + r->originPad);
+    PlaneLanes qx = r->ox + l->t * r->dx, qy = r->oy + l->t * r->dy, qz = r->oz + l->t * r->dz;
+    PlaneMask inside = (qx >= box->lo[0] - pad) & (qx <= box->hi[0] + pad);
+    inside &= (qy >= box->lo[1] - pad) & (qy <= box->hi[1] + pad);
+    return inside & (qz >= box->lo[2] - pad) & (qz <= box->hi[2] + pad);
+}
+
+// FirstOrderHolds (plane.cpp), lane by lane: n.d's error, with the normal's, small against n.d.
+// (The normal's own half, setUp->normalKnown, is the same for every lane.)
+static RT_INLINE PlaneMask LaneFirstOrderHolds(const TriangleSetUp *setUp, const LaneT *l) {
+    const dvec3 e = setUp->nError;
+    PlaneLanes eD = l->eD + (Same(e.x) * l->absDx + Same(e.y) * l->absDy + Same(e.z) * l->absDz);
+    return eD <= kFirstOrderShare * Magnitude(&l->denominator);
+}
+
 // QuickPlaneT's answer for each of `count` rays (at most kPlaneLanes) against tMax, with its t
 // and bound where it is PLANE_HIT. The lanes past `count` repeat the first ray.
 static RT_INLINE void QuickPlaneLanes(const Triangle *tri, const TriangleSetUp *setUp,
                                       const PlaneRays *r, const PlaneLanes *tMax, int count,
                                       QuickAnswer *answer, PlaneT *plane) {
-    const dvec3 n = setUp->n, e = setUp->nError;
-    PlaneLanes toAx = Same(tri->a.x) - r->ox, toAy = Same(tri->a.y) - r->oy;
-    PlaneLanes toAz = Same(tri->a.z) - r->oz;
-    PlaneLanes denominator = Same(n.x) * r->dx + Same(n.y) * r->dy + Same(n.z) * r->dz;
-    PlaneLanes t = (Same(n.x) * toAx + Same(n.y) * toAy + Same(n.z) * toAz) / denominator;
+    LaneT l;
+    LanePlaneT(tri, setUp, r, &l);
+    PlaneLanes t = l.t, error = LaneError(setUp, r, &l), zero = Same(0);
     PlaneMask finite = Magnitude(&t) <= Same(DBL_MAX);
-    // PlainError
-    PlaneLanes absDx = Magnitude(&r->dx), absDy = Magnitude(&r->dy), absDz = Magnitude(&r->dz);
-    PlaneLanes nx = Same(std::fabs(n.x)), ny = Same(std::fabs(n.y)), nz = Same(std::fabs(n.z));
-    PlaneLanes eN =
-        GammaD(4) * (nx * Magnitude(&toAx) + ny * Magnitude(&toAy) + nz * Magnitude(&toAz));
-    PlaneLanes eD = GammaD(3) * (nx * absDx + ny * absDy + nz * absDz);
-    PlaneLanes cx = toAx - t * r->dx, cy = toAy - t * r->dy, cz = toAz - t * r->dz;
-    PlaneLanes absT = Magnitude(&t);
-    PlaneLanes error = 2 * ((eN + absT * eD +
-                             (Same(e.x) * Magnitude(&cx) + Same(e.y) * Magnitude(&cy) +
-                              Same(e.z) * Magnitude(&cz))) /
-                            Magnitude(&denominator)) +
-                       GammaD(1) * absT;
-    // WellInside
-    const Box *box = &setUp->box;
-    PlaneLanes pad = 0.5 * ((double)kBoxAllowance * box->size + r->originPad);
-    PlaneLanes qx = r->ox + t * r->dx, qy = r->oy + t * r->dy, qz = r->oz + t * r->dz;
-    PlaneMask inside = (qx >= box->lo[0] - pad) & (qx <= box->hi[0] + pad);
-    inside &= (qy >= box->lo[1] - pad) & (qy <= box->hi[1] + pad);
-    inside &= (qz >= box->lo[2] - pad) & (qz <= box->hi[2] + pad);
-    // FirstOrderHolds
-    PlaneLanes eD2 = eD + (Same(e.x) * absDx + Same(e.y) * absDy + Same(e.z) * absDz);
-    PlaneMask trusted = eD2 <= kFirstOrderShare * Magnitude(&denominator);
+    PlaneMask inside = LaneWellInside(setUp, r, &l), trusted = LaneFirstOrderHolds(setUp, &l);
     // The answers, in QuickPlaneT's order
-    PlaneLanes zero = Same(0);
     PlaneMask inRange = (t - 2 * error < *tMax) & (t + error > zero) & (t + 2 * error > r->tMin);
-    PlaneMask tight = (t - error > zero) & ~(error > kPlainRelativeError * absT);
+    PlaneMask tight = (t - error > zero) & ~(error > kPlainRelativeError * Magnitude(&t));
     for (int lane = 0; lane < count; lane++) {
         double tl = t[lane], el = error[lane];
         if (!Lane(&finite, lane))
