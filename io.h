@@ -66,6 +66,10 @@ std::string Shown(const std::string &token);
 // paragraph separators) and bytes that are not UTF-8 written as escapes, \n or \xHH a byte.
 std::string PrintableLine(const std::string &text);
 
+// Whether text is UTF-8 without control characters (PrintableLine leaves it as it is): what a
+// line of a text file holds, and a line of a PNG file does not.
+bool IsPrintableText(const std::string &text);
+
 // Reads a number token: decimal digits with an optional sign, point and exponent, finite.
 // Returns false and sets *error for anything else (inf, nan, hexadecimal, trailing characters).
 bool ParseReal(const std::string &token, real *value, std::string *error);

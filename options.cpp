@@ -15,9 +15,8 @@ const char *kUsage =
     "or the path of a scene file (README.md and docs/scene-format.md give the format).\n"
     "\n"
     "rendering:\n"
-    "  -o FILE                  output image, .png or .ppm (default: reference.png for default, "
-    "test.png for\n"
-    "                           test, NAME.png for a file NAME.scene)\n"
+    "  -o FILE                  output image, .png or .ppm (default: reference.png for\n"
+    "                           default, test.png for test, NAME.png for a file NAME.scene)\n"
     "  --size W[xH]             image size in pixels, 1..16384 (H defaults to W)\n"
     "  --spp N                  samples per pixel, 1..65536 (default 1: the pixel centre)\n"
     "  --aa grid|jitter|adaptive\n"
@@ -313,6 +312,17 @@ static bool CheckCombinations(const Options *opt, const std::string &seen, std::
     return CheckUnused(opt, seen, error);
 }
 
+// The message for an option rt does not know. `--size=64`, the GNU way, is told how rt writes it.
+static std::string UnknownOption(const std::string &a) {
+    size_t equals = a.find('=');
+    std::string name = a.substr(0, equals);
+    for (const auto &o : kOptions)
+        if (equals != std::string::npos && name == o.name && o.values == 1)
+            return "unknown option '" + a + "': write '" + name + " " + a.substr(equals + 1) +
+                   "' (see ray --help)";
+    return "unknown option '" + a + "' (see ray --help)";
+}
+
 bool ParseOptions(int argc, char **argv, Options *opt, std::string *error) {
     bool sceneGiven = false;
     std::string seen; // the options given so far, each between spaces
@@ -323,7 +333,7 @@ bool ParseOptions(int argc, char **argv, Options *opt, std::string *error) {
             if (a == o.name)
                 values = o.values;
         if (values < 0 && a.size() > 1 && a[0] == '-') {
-            *error = "unknown option '" + a + "' (see ray --help)";
+            *error = UnknownOption(a);
             return false;
         }
         if (values < 0) { // the scene

@@ -106,7 +106,7 @@ bool ParseProbeLine(const std::string &line, Ray *ray, bool *blank, std::string 
         return true;
     if (tokens.size() != 6) {
         *error = "expected 6 numbers OX OY OZ DX DY DZ, found " + std::to_string(tokens.size()) +
-                 " values";
+                 (tokens.size() == 1 ? " value" : " values");
         return false;
     }
     real v[6];

@@ -47,7 +47,21 @@ static bool LoadScene(const std::string &name, Scene *scene, std::string *defaul
     std::string base = name.substr(name.find_last_of('/') + 1); // NAME.png for path/NAME.scene
     size_t dot = base.find_last_of('.');
     *defaultOutput = (dot == std::string::npos || dot == 0 ? base : base.substr(0, dot)) + ".png";
-    return ReadSceneFile(name.c_str(), scene, error);
+    if (ReadSceneFile(name.c_str(), scene, error))
+        return true;
+    // A bare word that names no file may be a built-in scene misremembered
+    struct stat info;
+    if (name.find_first_of("/.") == std::string::npos && stat(name.c_str(), &info) != 0) {
+        size_t n = sizeof kBuiltInScenes / sizeof kBuiltInScenes[0];
+        std::string names;
+        for (size_t k = 0; k < n; k++)
+            names += (k == 0       ? ""
+                      : k + 1 == n ? " and "
+                                   : ", ") +
+                     std::string(kBuiltInScenes[k].name);
+        *error += " (nor is it a built-in scene: those are " + names + ")";
+    }
+    return false;
 }
 
 // The line of --stats that says how the triangles were searched.

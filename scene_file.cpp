@@ -7,6 +7,7 @@
 #include "ray.h"
 #include "robust.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -78,12 +79,16 @@ static bool WholeNumber(const Statement *st, size_t index, int lo, int hi, int *
            Fail(st, st->tokens[0] + ": " + why, error);
 }
 
-static bool CheckColor(const Statement *st, const char *what, color c, std::string *error) {
-    bool ok = c.x >= 0 && c.x <= 1 && c.y >= 0 && c.y <= 1 && c.z >= 0 && c.z <= 1;
-    return ok || Fail(st, std::string(what) + ": colour components must be in [0, 1]", error);
+// A colour (diffuse, ambient, background): each component in [0, 1]; the message shows the
+// numbers as read.
+static bool CheckColor(const Statement *st, const std::string &what, color c, std::string *error) {
+    if (c.x >= 0 && c.x <= 1 && c.y >= 0 && c.y <= 1 && c.z >= 0 && c.z <= 1)
+        return true;
+    char numbers[96];
+    snprintf(numbers, sizeof numbers, "%g %g %g", (double)c.x, (double)c.y, (double)c.z);
+    return Fail(st, what + " " + numbers + ": each component must be in [0, 1]", error);
 }
 
-// A statement that may appear once: marks it, or reports the second one.
 // Light (a light's intensity, a material's emitted radiance): any finite amount >= 0, since a
 // light may be brighter than the white a pixel can show.
 static bool CheckLight(const Statement *st, const char *what, color c, std::string *error) {
@@ -91,6 +96,7 @@ static bool CheckLight(const Statement *st, const char *what, color c, std::stri
     return ok || Fail(st, std::string(what) + ": each value must be a finite number >= 0", error);
 }
 
+// A statement that may appear once: marks it, or reports the second one.
 static bool Once(const Statement *st, bool *seen, std::string *error) {
     if (*seen)
         return Fail(st, "second '" + st->tokens[0] + "' statement (only one is allowed)", error);
@@ -194,7 +200,7 @@ static bool SetMaterialProperty(const Statement *st, const std::string &key, con
                                 Material *m, std::string *error) {
     if (key == "diffuse" || key == "ambient") {
         color c = {v[0], v[1], v[2]};
-        if (!CheckColor(st, key.c_str(), c, error))
+        if (!CheckColor(st, "material: " + key, c, error))
             return false;
         (key == "diffuse" ? m->diffuse : m->ambient) = c;
     } else if (key == "specular") {
@@ -217,6 +223,22 @@ static bool SetMaterialProperty(const Statement *st, const std::string &key, con
     return true;
 }
 
+// A material's properties, how many numbers each takes, and their names for messages.
+struct MaterialProperty {
+    const char *key;
+    int count;
+    const char *names;
+};
+static const MaterialProperty *FindProperty(const std::string &key) {
+    static const MaterialProperty kProperties[] = {{"diffuse", 3, "R G B"}, {"ambient", 3, "R G B"},
+                                                   {"specular", 2, "KS N"}, {"mirror", 1, "K"},
+                                                   {"glass", 1, "IOR"},     {"emit", 3, "R G B"}};
+    for (const MaterialProperty &p : kProperties)
+        if (key == p.key)
+            return &p;
+    return nullptr;
+}
+
 static bool ReadMaterial(const Statement *st, Scene *scene, std::string *error) {
     if (st->tokens.size() < 2)
         return Fail(st, "material: missing name", error);
@@ -227,11 +249,8 @@ static bool ReadMaterial(const Statement *st, Scene *scene, std::string *error) 
     std::string keysSeen;
     for (size_t k = 2; k < st->tokens.size();) {
         const std::string &key = st->tokens[k];
-        int count = key == "diffuse" || key == "ambient" || key == "emit" ? 3
-                    : key == "specular"                                   ? 2
-                    : key == "mirror" || key == "glass"                   ? 1
-                                                                          : 0;
-        if (count == 0)
+        const MaterialProperty *p = FindProperty(key);
+        if (!p)
             return Fail(st,
                         "material: unknown property " + Shown(key) +
                             " (expected diffuse, ambient, specular, mirror, glass or emit)",
@@ -240,11 +259,13 @@ static bool ReadMaterial(const Statement *st, Scene *scene, std::string *error) 
             return Fail(st, "material: '" + key + "' given twice", error);
         keysSeen += " " + key + " ";
         real v[3];
+        int count = p->count;
         for (int j = 0; j < count; j++) {
             std::string why;
             if (k + 1 + j >= st->tokens.size())
                 return Fail(st,
-                            "material: '" + key + "' needs " + std::to_string(count) + " number(s)",
+                            "material: '" + key + "' needs " + std::to_string(count) +
+                                (count == 1 ? " number: " : " numbers: ") + p->names,
                             error);
             if (!ParseReal(st->tokens[k + 1 + j], &v[j], &why))
                 return Fail(st, "material: " + key + ": " + why, error);
@@ -324,6 +345,28 @@ static bool ReadMesh(const Statement *st, Scene *scene, std::string *error) {
 }
 
 // The statements that set one thing for the whole scene, each at most once.
+// What an unknown keyword may say about the mistake: a keyword in capitals, a Wavefront OBJ file
+// given where a scene file goes, or a file that is not text at all (a PNG image).
+static std::string KeywordHint(const std::string &k) {
+    static const char *const kKeywords[] = {"size",       "camera", "shading",  "ambient",
+                                            "background", "depth",  "material", "sphere",
+                                            "triangle",   "mesh",   "light"};
+    static const char *const kObj[] = {"v", "vt", "vn", "f", "o", "g", "s", "usemtl", "mtllib"};
+    std::string lower = k;
+    for (char &c : lower)
+        c = (char)std::tolower((unsigned char)c);
+    for (const char *keyword : kKeywords)
+        if (lower == keyword)
+            return " (keywords are written in lower case: '" + lower + "')";
+    for (const char *statement : kObj)
+        if (k == statement)
+            return " (this looks like an OBJ mesh: a scene file draws one with `mesh FILE "
+                   "MATERIAL`)";
+    if (!IsPrintableText(k))
+        return " (this does not look like a text file: a scene file is text, a statement a line)";
+    return "";
+}
+
 static bool ReadSetting(const Statement *st, Scene *scene, Declared *declared, std::string *error) {
     const std::string &k = st->tokens[0];
     real v[3];
@@ -342,7 +385,8 @@ static bool ReadSetting(const Statement *st, Scene *scene, Declared *declared, s
         if (!Once(st, &declared->ambient, error) || !Numbers(st, 1, 1, 2, v, error))
             return false;
         scene->ambient = v[0];
-        return (v[0] >= 0 && v[0] <= 1) || Fail(st, "ambient must be in [0, 1]", error);
+        return (v[0] >= 0 && v[0] <= 1) ||
+               Fail(st, "ambient " + st->tokens[1] + ": must be in [0, 1]", error);
     }
     if (k == "background") {
         if (!Once(st, &declared->background, error) || !Numbers(st, 1, 3, 4, v, error))
@@ -361,7 +405,7 @@ static bool ReadSetting(const Statement *st, Scene *scene, Declared *declared, s
                                            : SHADING_FLOOR;
         return true;
     }
-    return Fail(st, "unknown keyword " + Shown(k), error);
+    return Fail(st, "unknown keyword " + Shown(k) + KeywordHint(k), error);
 }
 
 // One statement: checks it and adds what it says to the scene.

@@ -119,6 +119,8 @@ std::string PrintableLine(const std::string &text) {
     return line;
 }
 
+bool IsPrintableText(const std::string &text) { return PrintableLine(text) == text; }
+
 // Decimal digits with an optional sign, point and exponent: -2, +0.5, 1e-3, .5, 5.
 static bool LooksDecimal(const std::string &t) {
     size_t k = 0, digits = 0;

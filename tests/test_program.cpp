@@ -79,6 +79,7 @@ struct BadRun {
 
 static const BadRun kBadRuns[] = {
     {"--bogus", 2, "unknown option"},
+    {"--size=64", 2, "unknown option '--size=64': write '--size 64'"},
     {"--size", 2, "needs 1 value"},
     {"--size 0", 2, "between 1 and 16384"},
     {"--size 16385", 2, "between 1 and 16384"},
@@ -96,7 +97,9 @@ static const BadRun kBadRuns[] = {
     {"--self-hit nudge", 2, "bound, epsilon or skip"},
     {"--fresnel fast", 2, "exact or schlick"},
     {"default test", 2, "more than one scene"},
-    {"nosuchscene", 2, "nosuchscene"},
+    {"nosuchscene", 2,
+     "nosuchscene: No such file or directory (nor is it a built-in scene: those "
+     "are default and test)"},
     {"-o missing_dir/x.png", 3, "missing_dir/x.png"},
     {"--size 8 --size 9", 2, "--size given twice"},
     {"--tolerance 2", 2, "--tolerance goes with --compare"},

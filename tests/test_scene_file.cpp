@@ -62,11 +62,13 @@ static const BadScene kBadScenes[] = {
     {"material m\ntriangle 0 0 0 1 0 0 0 1 z m", 2, "not a decimal number: 'z'"},
     {"material m\nmaterial m", 2, "defined twice"},
     {"material", 1, "missing name"},
-    {"material m diffuse 1.5 0 0", 1, "[0, 1]"},
+    {"material m diffuse 1.5 0 0", 1,
+     "material: diffuse 1.5 0 0: each component must be in [0, 1]"},
     {"material m diffuse -0.1 0 0", 1, "[0, 1]"},
     {"material m diffuse 1 1", 1, "needs 3 number"},
     {"material m ambient 1 1 7", 1, "[0, 1]"},
-    {"material m specular 0.5", 1, "needs 2 number"},
+    {"material m specular 0.5", 1, "'specular' needs 2 numbers: KS N"},
+    {"material m glass", 1, "'glass' needs 1 number: IOR"},
     {"material m specular -1 10", 1, ">= 0"},
     {"material m mirror 2", 1, "mirror fraction must be in [0, 1]"},
     {"material m mirror 0.5 mirror 0.2", 1, "given twice"},
@@ -77,10 +79,17 @@ static const BadScene kBadScenes[] = {
     {"light 0 0 0 2", 1, "expected 3 numbers (X Y Z) or 6 (X Y Z R G B), got 4"},
     {"light 0 0 0 1 1 -2", 1, "finite number >= 0"},
     {"material m emit 1 -1 1", 1, "finite number >= 0"},
-    {"material m emit 1 1", 1, "'emit' needs 3 number(s)"},
+    {"material m emit 1 1", 1, "'emit' needs 3 numbers: R G B"},
+    {"ambient 2", 1, "ambient 2: must be in [0, 1]"},
+    {"background 0 2 0.5", 1, "background 0 2 0.5: each component must be in [0, 1]"},
     {"light 0 0 0 1 1 1 1", 1, "extra value"},
     {"\x01\x02\xff\xfe garbage", 1, "unknown keyword '?\?\?\?'"},
     {"# ok\r\nsize 64 64\r\nbogus\r\n", 3, "unknown keyword 'bogus'"}, // CRLF counts lines too
+    // an unknown keyword says what the mistake may be
+    {"Sphere 0 0 -5 1 m", 1,
+     "unknown keyword 'Sphere' (keywords are written in lower case: 'sphere')"},
+    {"# a model\nv 0 0 0\nf 1 1 1\n", 2, "unknown keyword 'v' (this looks like an OBJ mesh"},
+    {"\x89PNG\r\n", 1, "unknown keyword '?PNG' (this does not look like a text file"},
 };
 
 static void TestSceneErrors() {
@@ -95,6 +104,11 @@ static void TestSceneErrors() {
                   std::to_string(bad.line) + " mentioning \"" + bad.message + "\" (got: " + error +
                   ")");
     }
+    Scene scene;
+    std::string error;
+    CHECK(!ParseSceneText("bogus\n", "s.scene", &scene, &error) &&
+              error == "s.scene:1: unknown keyword 'bogus'",
+          "an unknown keyword that no hint fits: the message alone (got: " + error + ")");
 }
 
 // Comments, tabs, CRLF, signs and scientific notation read as the plain form does.
