@@ -5,6 +5,7 @@
 // screen form once per render (PlanRender). Every direction is built from the eye outward, so
 // it does not depend on how far the eye is from the origin.
 #include "ray.h"
+#include "render.h"
 
 // The screen lies `distance` in front of the eye (at z = eye.z - distance), centred on the line
 // of sight, width p.width, with square pixels of size width / widthPixels; screen x grows to the

@@ -124,8 +124,8 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
 }
 
 // A ray's direction rescaled to a largest component in [1, 2) when it lies outside
-// kDirectionWindow (numbers.h), and its interval with it, so that no shape test squares or divides a
-// direction of 1e-200 or 1e200 out of range. Scaling d by 2^k scales every t by 2^-k exactly;
+// kDirectionWindow (numbers.h), and its interval with it, so that no shape test squares or divides
+// a direction of 1e-200 or 1e200 out of range. Scaling d by 2^k scales every t by 2^-k exactly;
 // ScaleBack undoes it. False for a direction that is zero (or not finite): such a ray has no
 // answer.
 struct ScaledRay {
@@ -219,7 +219,7 @@ static bool HitSpheres(const Scene *scene, Methods methods, int skip, const Ray 
 // later shape only counts if it is nearer, and a tie keeps the earlier shape. With anyHit, the
 // first hit found ends the search (a shadow ray needs no more). The shape `start` names is passed
 // over: under --self-hit skip the one the ray leaves; under the default bound, the triangle it
-// leaves where the ray plainly goes away from it (StartLeaving, ray.h), and none otherwise.
+// leaves where the ray plainly goes away from it (StartLeaving, robust.h), and none otherwise.
 static bool HitShapes(const Scene *scene, Methods methods, const Ray *given, const RayStart *start,
                       real tMax, bool anyHit, RayHit *hit) {
     ScaledRay s;

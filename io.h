@@ -2,7 +2,12 @@
 // and numbers (text.cpp), OBJ meshes (mesh.cpp), probes and ray trees (probe.cpp), debug views
 // (views.cpp).
 #pragma once
-#include "ray.h"
+#include "render.h"
+
+#include <cstddef>
+#include <cstdio>
+#include <string>
+#include <vector>
 
 // ---- image.cpp: image files and comparing images ------------------------------------------------
 
@@ -40,9 +45,9 @@ bool CompareImages(const Image *a, const Image *b, int tolerance, ImageDifferenc
 
 // ---- text.cpp: lines, tokens and numbers (scene files, probe lines, the command line) --------
 
-// The longest line a scene file or probe file may have: a statement is a keyword and at most
-// fifteen numbers, so this leaves room for any comment, and a one-line file of 250 MB is refused
-// at once instead of being held in memory.
+// The longest line a scene file or probe file may have: a statement is a keyword and a few dozen
+// words at most (a camera's fifteen numbers, a mesh's transform words), so this leaves room for
+// any comment, and a one-line file of 250 MB is refused at once instead of being held in memory.
 const size_t kMaxLineLength = 65536;
 
 enum LineStatus {

@@ -1,10 +1,13 @@
 // layout.h -- the committed scene: the layout the fast shape loop reads (commit.cpp), the search
 // over it (kernel.cpp, one ray; packet.cpp, a pixel's samples together) and the BVH build
 // (build.cpp). Speed machinery: every answer is the plain loop's (geometry.cpp), bit for bit.
-// Included by ray.h, whose Scene holds a SceneLayout; the functions take the structs ray.h
-// declares, by address.
+// Included by ray.h, whose Scene holds a SceneLayout; the functions take structs that ray.h and
+// render.h define (declared here, complete where the functions are called).
 #pragma once
 #include "numbers.h"
+
+#include <cstddef>
+#include <vector>
 
 struct Scene;
 struct Ray;
@@ -24,7 +27,7 @@ struct TraceLog;
 // the plain loop.
 const int kLanes = 32 / (int)sizeof(real); // 4 doubles or 8 floats: one 256-bit vector
 
-// An axis-aligned box, and its largest |coordinate| (TriangleBox, SlabInterval).
+// An axis-aligned box, and its largest |coordinate| (TriangleBox and SlabInterval, robust.h).
 struct Box {
     real lo[3], hi[3];
     real size;
@@ -184,10 +187,10 @@ void BoundsBox(const Bounds *bounds, Box *box, real *halfArea);
 
 // ---- packet.cpp: a pixel's samples searched for together ----------------------------------
 
-// Whether a packet of `count` rays can be taken and pays (PacketPays): the
-// watertight and stable methods, a current list layout tested in AVX2 (the kernel takes no
-// packet otherwise), two rays or more, and a scene small enough (at most 64 shapes) that each
-// ray's own set-up outweighs what the blocks save.
+// Whether a packet of `count` rays can be taken and pays (PacketPays): the watertight and stable
+// methods, a current list layout tested in AVX2 (the kernel takes no packet otherwise), two rays
+// or more, and a scene small enough (at most 64 shapes) that each ray's own set-up outweighs what
+// the blocks save.
 bool PacketsPay(const Scene *scene, Methods methods, int count);
 
 // FindNearestHitFrom for `count` rays from the eye (kFromTheEye, tMax infinity), at most kLanes:
@@ -207,3 +210,29 @@ void AnyHitsFrom(const Scene *scene, Methods methods, const Ray *rays, const Ray
 // toward each light (AnyHitsFrom).
 void TraceEyeRays(const Scene *scene, const RenderSettings *settings, const Ray *rays, int count,
                   TraceLog *log, color *sum);
+
+// ---- shade.cpp and path.cpp: an eye ray whose hit a packet found
+// ---------------------------------
+
+// What became of a surface's shadow ray toward each light, where it was cast before the surface
+// was shaded (TraceEyeRays): not cast (unknown), none needed (ShadowRay found no direction),
+// the light visible, or blocked. Kept for the scene's first kKnownLights lights.
+enum ShadowAnswer { SHADOW_UNKNOWN, SHADOW_NO_RAY, SHADOW_VISIBLE, SHADOW_BLOCKED };
+// (Eight, a byte each, so that KnownShadows is one 8-byte word: the course's scenes have one or
+// two lights, and a light past the eighth is asked about when its surface is shaded, as TraceRay
+// asks, with the same answer.)
+const int kKnownLights = 8;
+struct KnownShadows {
+    signed char answer[kKnownLights]; // a ShadowAnswer for each light
+};
+
+// TraceRay for a primary ray whose nearest hit has been found already (FindNearestHitsFromEye),
+// and whose surface's shadow rays may have been cast (`known`, or null): the same colour, counts
+// and record.
+color TraceFoundEyeRay(const Scene *scene, const RenderSettings *settings, const Ray *ray,
+                       bool found, RayHit *hit, const KnownShadows *known, TraceLog *log);
+
+// TracePath for an eye ray whose nearest hit has been found already (FindNearestHitsFromEye):
+// `found`, and *hit where it is.
+color TraceFoundPath(const Scene *scene, const RenderSettings *settings, const Ray *primary,
+                     bool found, const RayHit *hit, int i, int j, int s, TraceLog *log);

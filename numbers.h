@@ -2,16 +2,14 @@
 // them in range.
 //
 // `real` is double, or float when built with -DRT_FLOAT (the ray_float program). Every header of
-// rt includes this one first, through ray.h.
+// rt includes this one, directly or through ray.h. Also here: RT_INLINE, the hash step MixWord
+// that every random number starts from, and dvec3, a vector in double whatever `real` is.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <limits>
-#include <string>
-#include <vector>
 
 // ---- numbers -------------------------------------------------------------------------------
 
@@ -74,8 +72,6 @@ inline vec3 Cross(vec3 a, vec3 b) {
 }
 inline real Length(vec3 a) { return std::sqrt(Dot(a, a)); }
 inline vec3 Normalize(vec3 a) { return (1 / Length(a)) * a; }
-// The mirror direction of d about the unit normal n: r = d - 2 (d.n) n (the assignment handout)
-inline vec3 Reflect(vec3 d, vec3 n) { return d - (2 * Dot(d, n)) * n; }
 inline vec3 Abs(vec3 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
 // The larger of each pair, as std::fmax answers (a NaN loses to a number; of +0 and -0, where
 // fmax may return either, the first), written out: std::fmax is a library call, 1% of the

@@ -12,6 +12,7 @@
 // answer is the one the ray gets alone, so the colours, the ray counts and their sum are
 // TraceRay's, bit for bit.
 #include "ray.h"
+#include "render.h"
 #include "robust.h"
 
 // Whether a packet of `count` rays costs less than its rays one by one. A packet tests each

@@ -12,6 +12,8 @@
 // depends on the thread count. Pixels are written sRGB-encoded (render.cpp). The random numbers,
 // the scattered directions and the points drawn on emitters are in path_sampling.h.
 #include "path_sampling.h"
+#include "render.h"
+#include "robust.h"
 
 // The decisions of one bounce, each with a hash of its own (PathHash), and the hashes of its two
 // disk points: the scattered direction's and a point on an emitting sphere's (DiskPoint).

@@ -3,6 +3,7 @@
 // so that these short functions inline into the path loop as they would in one file.
 #pragma once
 #include "ray.h"
+#include "render.h"
 
 #include <algorithm>
 

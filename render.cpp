@@ -7,6 +7,7 @@
 // Each pixel is computed the same way whichever thread takes it, so the image never depends on
 // the thread count; threads take whole rows from a shared counter, so no core waits while work
 // remains.
+#include "render.h"
 #include "ray.h"
 
 #include <algorithm>

@@ -72,6 +72,8 @@ inline Box TriangleBox(const Triangle *tri) {
 
 // ---- plane.cpp: where a ray meets a triangle's plane -------------------------------------------
 
+// Fills *setUp (layout.h) for tri: its box, its normal from edges scaled by a power of two, that
+// normal's error bound, and whether the first tier's bound may be trusted (plane.cpp).
 void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp);
 
 // The hit record of a triangle whose interior the ray passes through (plane.cpp): t from the
@@ -88,12 +90,16 @@ constexpr double GammaD(int n) { return n * kU / (1 - n * kU); }
 
 // Tier 2 is taken when tier 1's bound is wider than this share of t: then the hit point
 // o + t d, which inherits the error of t, would sit farther off the surface than a few roundings
-// of its coordinates, and probes would print digits that are not known. 32 u of `real` is twice
-// what tier 1 gives a ray that meets an axis-aligned wall head-on, so ordinary hits stay in tier 1.
+// of its coordinates, and probes would print digits that are not known. In double, 32 u is about
+// twice what tier 1 gives a ray that meets an axis-aligned wall head-on (some 15 u), so ordinary
+// hits stay in tier 1. In float it is 32 u of float: tier 1 still computes in double, but the hit
+// point is kept in float, and a t known to a few float roundings is all that point can use.
 const double kPlainRelativeError = 32 * (double)kUnitRoundoff;
 
 // Tier 1's bound is first order; FirstOrderHolds (plane.cpp) believes it only while the normal's
-// error and n.d's error are each within this share of what they are errors of.
+// error and n.d's error are each within this share of what they are errors of. (Then what the
+// bound leaves out is at most about 2^-9 of what it keeps, which its factor of 2 covers:
+// FirstOrderHolds says how.)
 const double kFirstOrderShare = 1.0 / 1024;
 
 // t and a bound on |t - t*|, where t* is the exact t of the exact plane through a, b, c.
@@ -172,3 +178,28 @@ bool IntersectWatertight(const Triangle *tri, const TriangleSetUp *setUp, const 
 // per main axis, with the first step of the test inlined: most triangles end there.
 bool HitWatertightTriangles(const Triangle *triangles, int n, int skip, const Ray *ray,
                             const RayShear *shear, real tMin, real tMax, bool anyHit, RayHit *hit);
+
+// ---- geometry.cpp: rays that leave a triangle ---------------------------------------------------
+
+// Whether a ray in direction dir from a point that OffsetRayOrigin moved off triangle hit, to the
+// side `side` points to, goes so plainly away from it that the shape loop may pass over it. The
+// moved origin is on that side of the exact plane, or on it (OffsetRayOrigin's bound, which
+// holds while the normal is known to 2^-10: normalKnown). A ray going away from the plane on
+// that side can then meet it only at t <= 0, which RobustPlaneHit's sound bound refuses; passing
+// over the triangle, as --self-hit skip does, changes no answer wherever that bound holds (a
+// layout test checks closed meshes of triangles around spheres of radius 1e-305 to 1e300) and saves
+// that refusal, about 200 instructions. Going away is certain where the rounded n.d, on that side,
+// exceeds awayShare of sum |d_i| (SetUpTriangle says why). A sphere is never passed over: a ray
+// leaving it inward meets it again. (Inline: every ray that leaves a surface asks.)
+inline bool PassesOver(const RayHit *hit, vec3 side, vec3 dir) {
+    if (!(hit->shape == SHAPE_TRIANGLE && hit->awayShare > 0))
+        return false;
+    real away = Dot(side, hit->normal) < 0 ? -Dot(dir, hit->normal) : Dot(dir, hit->normal);
+    return away > hit->awayShare * (std::fabs(dir.x) + std::fabs(dir.y) + std::fabs(dir.z));
+}
+
+// Where such a ray starts its search: from t = 0, passing over the triangle it leaves where
+// PassesOver, else over nothing.
+inline RayStart StartLeaving(const RayHit *hit, vec3 side, vec3 dir) {
+    return PassesOver(hit, side, dir) ? RayStart{0, SHAPE_TRIANGLE, hit->index} : kFromTheEye;
+}

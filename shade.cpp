@@ -5,6 +5,7 @@
 // weighting. At most `depth` rays in a chain (then black), the background on a miss. Every ray
 // asks the scene one of two questions of geometry.cpp: FindNearestHitFrom or AnyHitFrom.
 #include "ray.h"
+#include "render.h"
 
 #include <algorithm>
 
@@ -227,7 +228,7 @@ bool Refract(vec3 d, vec3 n, real eta, vec3 *t) {
 }
 
 // The exact Fresnel reflectance of a clear dielectric for unpolarised light, the average of the
-// s- and p-polarised amplitudes squared (Hecht, Optics §4.6.2; pbrt-v4 §9.5), for the cosine of
+// s- and p-polarised amplitudes squared (Hecht, Optics §4.6.2; pbrt-v4 §9.3), for the cosine of
 // the incident angle and eta = n1 / n2. 1 under total internal reflection. Exact rather than
 // Schlick's approximation, because Schlick is only right on the side of the smaller index:
 // evaluated inside glass it misses the rise to 1 at the critical angle.

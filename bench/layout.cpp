@@ -6,6 +6,7 @@
 // rays. Each time is the median of kRounds renders, the list and the BVH taken in turn so both
 // see the same machine load; min and max are printed beside it. Writes DIR/layout.md (the
 // table) and DIR/layout.svg (the log-log plot).
+#include "../render.h"
 #include "ray.h"
 #include "svg.h"
 

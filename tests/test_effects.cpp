@@ -3,6 +3,7 @@
 // Ray counts predicted exactly (counted independently of the shading code), the effects each
 // scene plans, Snell's law, total internal reflection and Fresnel worked by hand for a glass
 // sphere, and Phong highlights, including the cases that must give no highlight and no NaN.
+#include "../render.h"
 #include "test.h"
 
 static Scene AssignmentWithoutMirrors() {

@@ -5,6 +5,7 @@
 // float. Each check here asks the same question four ways: the scene as written (the plain
 // loop of watertight.cpp), committed as one list of blocks, committed with a BVH, and with the
 // BVH through the kernel's other copy, and compares every field of the answers.
+#include "../render.h"
 #include "hard_cases.h"
 #include "robust_scenes.h"
 #include "test.h"

@@ -1,4 +1,5 @@
 // tests/test_main.cpp -- the harness: counts checks, prints failures, runs every group.
+#include "../render.h"
 #include "test.h"
 
 #include <cstring>

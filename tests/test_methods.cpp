@@ -5,6 +5,7 @@
 // Schlick's Fresnel. At scale 1 it must draw essentially rt's image; where it fails, the failure
 // must be the method's own (which hard cases it gets wrong, acne far from the origin, lost
 // contact shadows at small scale, glass under the skip rule), and these tests hold each to it.
+#include "../render.h"
 #include "hard_cases.h"
 #include "robust_scenes.h"
 #include "test.h"

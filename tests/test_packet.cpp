@@ -6,6 +6,7 @@
 // checks ask each packet three ways (the packet kernel itself, FindNearestHitsFromEye, and each
 // ray alone in the scene as written) and count the packets the kernel took, so that a packet path
 // that quietly fell back to one ray at a time would show.
+#include "../render.h"
 #include "../robust.h"
 #include "robust_scenes.h"
 #include "test.h"

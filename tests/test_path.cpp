@@ -4,6 +4,7 @@
 // a diffuse wall under one point light (rho / pi I cos / r^2, nothing else), and the inside of
 // a closed emitting sphere (Le / (1 - rho) in expectation, exactly a geometric sum under a fixed
 // bounce cap). The rest are statistical: the tests derive their tolerance from the sample count.
+#include "../render.h"
 #include "test.h"
 
 #include <cmath>

@@ -3,6 +3,7 @@
 // The assignment camera: eye at the origin, screen 2 wide at distance 2, 512 pixels, so a pixel
 // is 2/512 = 1/256 wide and pixel (i, j)'s centre ray is ((i + 0.5 - 256)/256,
 // (256 - j - 0.5)/256, -2). Every number below is exact in binary.
+#include "../render.h"
 #include "test.h"
 
 static void CheckRay(const Perspective &p, real sx, real sy, vec3 expected, const char *what) {

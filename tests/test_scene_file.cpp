@@ -1,6 +1,7 @@
 // tests/test_scene_file.cpp -- scene files: every error names its line, valid variations read
 // the same, the three cameras make the rays worked out by hand, and the built-in scenes' files
 // draw the built-in scenes' bytes.
+#include "../render.h"
 #include "test.h"
 
 #include <cstdio>

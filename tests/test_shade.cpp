@@ -3,6 +3,7 @@
 // The stage: a white floor triangle in the plane y = 0 (outward side up), seen from above by a
 // ray from (0, 5, 0) straight down, which hits the origin. The light and what stands between
 // them change from test to test; each colour is worked out from kd * max(ambient, N.L).
+#include "../render.h"
 #include "test.h"
 
 #include <cmath>

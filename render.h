@@ -1,0 +1,206 @@
+// render.h -- how a render lights and samples what the rays hit: the render's settings, the
+// effects a scene calls for, chains and trees of rays (shade.cpp); lighting, mirrors and glass
+// (shade.cpp); the path tracer of `shading path` (path.cpp); the render loop on all cores and its
+// sampling (render.cpp). The scene, the cameras and the nearest hit are ray.h's.
+#pragma once
+#include "ray.h"
+
+#include <cstdint>
+#include <vector>
+
+// ---- render plumbing: effects, settings, chains and trees of rays (shade.cpp, render.cpp) --
+
+// A shape whose material emits (`emit`), by kind and place in its array.
+struct Emitter {
+    ShapeKind shape;
+    int index;
+    real area;   // EmitterArea, once per render (every light sample divides by it)
+    vec3 normal; // a triangle's unit normal, once per render (every light sample uses it)
+    color emit;  // its material's emitted radiance
+};
+
+// Which effects a render can need, decided once per render from the scene and the settings
+// (PlanEffects); the shading code skips whole paths for the absent ones.
+struct Effects {
+    bool shadows;                  // lights, and shapes that could stand in their way
+    bool reflection;               // a material with mirror > 0 or glass, and depth > 1
+    bool refraction;               // a glass material, and depth > 1
+    bool specular;                 // Phong shading, lights, and a material with ks > 0
+    bool antialiasing;             // more than one sample per pixel
+    bool indirect;                 // `shading path`: light scattered by diffuse surfaces
+    std::vector<Emitter> emitters; // `shading path`: the shapes that emit, for next-event
+                                   // estimation (path.cpp)
+};
+
+// Where a pixel's samples go (--aa).
+enum SampleMethod {
+    SAMPLES_GRID,    // a regular grid of cell centres
+    SAMPLES_JITTER,  // one random point in each grid cell (stratified), seeded by the pixel
+    SAMPLES_ADAPTIVE // centre and corners, then the rest jittered only where those five disagree
+};
+
+// Adaptive sampling refines a pixel when its first five samples (centre and corners) differ by
+// more than this in a channel (0..1), or their rays met different shapes. Measured at 256 x 256
+// and 16 spp against 256-spp references: 1/64, 1/32 and 1/16 give the same error (within 0.1%) on
+// the assignment and test scenes, because the shapes decide at edges; 1/16 casts the fewest rays.
+const real kAdaptiveContrast = real(1) / 16;
+
+// How `shading path` estimates the light a diffuse surface scatters (path.cpp), each choice
+// selectable so that `make bench` can compare them.
+enum ScatterMethod {
+    SCATTER_COSINE, // directions drawn with density cos(theta) / pi (Ray Tracing in One Weekend's
+                    // normal + random_unit_vector): the default
+    SCATTER_UNIFORM // uniform over the hemisphere, density 1 / (2 pi) (the journal's
+                    // random_in_hemisphere)
+};
+enum LightMethod {
+    LIGHTS_MIS, // next-event estimation to point lights and emitting shapes, combined with
+                // scattered rays that hit emitters by multiple importance sampling (the default)
+    LIGHTS_NEE, // next-event estimation only: a scattered ray that hits an emitter adds nothing
+    LIGHTS_NONE // scattered rays only: light arrives when a path happens to hit an emitter
+};
+// The defaults are all zero, so `{}` asks for them.
+struct PathMethods {
+    ScatterMethod scatter;
+    LightMethod lights;
+    bool noRoulette; // only `depth` ends paths (biased); else Russian roulette does (unbiased)
+    int seed;        // mixed into every random number: another seed, another (equally good) noise
+};
+
+// How far a render has come, for a progress line: the share of rows done, the rays cast a second
+// so far (every kind), and the seconds the rest will likely take. `finished`: the last report, so
+// that a line drawn in place can be cleared.
+struct RenderProgress {
+    double done, raysPerSecond, secondsLeft;
+    bool finished;
+};
+typedef void (*ProgressReport)(const RenderProgress *progress);
+
+// How one render is done; filled from the scene and the command line.
+struct RenderSettings {
+    int width, height;   // image size in pixels
+    int samplesPerPixel; // primary rays per pixel (the most, for adaptive sampling)
+    SampleMethod sampling;
+    int depth;       // most rays in one chain, primary included
+    int threads;     // worker threads; the image never depends on it
+    Methods methods; // the numerical methods (kRobustMethods, or as --methods and co. choose)
+    ProgressReport progress; // called every half second of a render that runs that long, and
+                             // then once at its end; nullptr: none (Render itself never prints)
+    Effects effects;         // filled by PlanRender
+    Camera camera;           // the scene's camera for this image size, filled by PlanRender
+    PathMethods path;        // how `shading path` samples (ignored by the other shadings)
+};
+
+enum RayKind { RAY_PRIMARY, RAY_SHADOW, RAY_REFLECTION, RAY_REFRACTION, RAY_DIFFUSE };
+
+// Where a ray stands in its chain: its number (1 for the primary ray; no more than `depth`) and
+// its weight, the share of the pixel's colour it carries (1 for the primary ray, times the
+// mirror fraction or Fresnel weight at each bounce).
+struct RayChain {
+    int number;
+    real weight;
+};
+
+// A ray whose colour would count less than this in its pixel is not cast: 2^-12 is a sixteenth
+// of one 8-bit step (1/255). Without it, glass, which splits every ray in two, would cast up to
+// 2^depth - 1 rays per pixel (1,023 at depth 10); this is the adaptive tree-depth control of Hall &
+// Greenberg, "A Testbed for Realistic Image Synthesis", IEEE CG&A 3(8), 1983.
+const real kMinRayWeight = real(1) / 4096;
+
+// Rays cast, by kind, and Phong highlights evaluated. Each row of the image counts into its own
+// and the counts are added up at the end.
+struct RayStats {
+    uint64_t primary, shadow, reflection, refraction;
+    uint64_t specularTerms;
+    uint64_t diffuse; // rays scattered by diffuse surfaces (`shading path`)
+};
+
+// One ray of a traced ray tree (`--pixel`): what it was, what it hit, the colour it brought
+// back, and its parent (the node whose hit spawned it; -1 for the primary ray).
+struct RayNode {
+    RayKind kind;
+    Ray ray;
+    bool hit;      // for a shadow ray: it was blocked
+    RayHit record; // the hit, or the blocker of a shadow ray
+    color light;   // colour brought back (for a shadow ray: the light's share when visible)
+    int parent;
+};
+
+// What a trace reports besides its colour: the rays it cast and, when `tree` is not null, every
+// ray as a node; `current` is the node whose hit is being shaded.
+struct TraceLog {
+    RayStats stats;
+    std::vector<RayNode> *tree;
+    int current;
+    uint64_t surfaces; // a hash of every shape the rays met (adaptive sampling compares them)
+};
+
+// ---- shade.cpp: lighting and the ray chain ---------------------------------------------------
+
+// Decides which effects a render of this scene with these settings can need (see Effects).
+void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects);
+
+// Colour seen along `ray`, a ray of the given kind at `chain` in its chain, starting as `start`
+// says (kFromTheEye for a primary ray). Counts it, and every ray it leads to, in log->stats (and
+// records them in log->tree if that is set).
+color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
+               const RayStart *start, RayChain chain, TraceLog *log);
+
+// Counts a ray of this kind; adds a node for it to log->tree, if a tree is being recorded, with
+// log->current as its parent (returns the node's index, or -1).
+void CountRay(RayKind kind, RayStats *stats);
+int RecordRay(RayKind kind, const Ray *ray, TraceLog *log);
+
+// The mirror direction of d about the unit normal n: r = d - 2 (d.n) n (the assignment handout)
+inline vec3 Reflect(vec3 d, vec3 n) { return d - (2 * Dot(d, n)) * n; }
+
+// Snell's law for unit d against the unit normal n (d.n <= 0), eta = n1 / n2. Writes the unit
+// refracted direction to *t and returns true, or returns false for total internal reflection.
+bool Refract(vec3 d, vec3 n, real eta, vec3 *t);
+
+// Exact Fresnel reflectance of unpolarised light for cos(incident angle), eta = n1 / n2;
+// 1 under total internal reflection.
+real FresnelReflectance(real cosI, real eta);
+
+// Schlick's approximation of it, R0 + (1 - R0)(1 - cos(i))^5 with R0 = ((1 - eta)/(1 + eta))^2, as
+// Ray Tracing in One Weekend computes it; 1 under total internal reflection.
+real SchlickReflectance(real cosI, real eta);
+
+// Whether a material gives off light (`emit` above 0 in some channel).
+bool Emits(const Material *m);
+
+// The surface area of an emitting shape (where PlanEffects finds the emitters).
+real EmitterArea(const Scene *scene, const Emitter *e);
+
+// ---- path.cpp: `shading path` -----------------------------------------------------------------
+
+// The light along `primary`, the camera ray of sample s of pixel (i, j), after any number of
+// bounces: one Monte Carlo path (see path.cpp). Counts its rays in log->stats, and records them
+// in log->tree if that is set.
+color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, int i,
+                int j, int s, TraceLog *log);
+
+// ---- render.cpp: the render loop -------------------------------------------------------------
+
+// Fills in what follows from the scene and the rest of *settings: the effects the render can
+// need (PlanEffects) and the camera prepared for settings->width x settings->height.
+void PlanRender(const Scene *scene, RenderSettings *settings);
+
+// Renders every pixel on settings->threads threads into *image; adds the rays cast to *stats.
+// Plans its own copy of the settings for this scene (PlanRender).
+void Render(const Scene *scene, const RenderSettings *settings, Image *image, RayStats *stats);
+
+// The colour of pixel (i, j): the average of its samples, before clamping. `settings` must have
+// been planned for this scene (PlanRender).
+color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
+                  RayStats *stats);
+
+// Pixel (i, j)'s sample s of n (n <= 65536, the most --spp allows), in pixels from the image's
+// top-left corner.
+vec2 SamplePosition(int i, int j, int s, int n);
+
+// Colour channel to 8 bits: round(clamp(c, 0, 1) * 255), no gamma.
+uint8_t ToByte(real c);
+
+// The sRGB curve: linear light in [0, 1] to its 8-bit-ready encoding (`shading path` pixels).
+real SrgbEncode(real linear);
