@@ -317,6 +317,9 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
         Complain(error);
         return status;
     }
+    std::string flat = opt->view ? "" : OneColourWarning(scene);
+    if (!flat.empty())
+        Complain("warning: " + flat);
     Image image;
     RayStats stats = {};
     auto renderStart = std::chrono::steady_clock::now();

@@ -6,6 +6,7 @@
 #include "ray.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 // ---- render plumbing: effects, settings, chains and trees of rays (shade.cpp, render.cpp) --
@@ -136,6 +137,12 @@ struct TraceLog {
 };
 
 // ---- shade.cpp: lighting and the ray chain ---------------------------------------------------
+
+// Why a lit render of this scene can only be one flat colour, for a warning: it has no shapes
+// (every pixel is the background), or nothing gives light (no light, a black background, and
+// ambient 0, or under `shading path` no material that emits): every pixel is black. Empty if
+// neither. (A warning, not an error: a test scene may mean it.)
+std::string OneColourWarning(const Scene *scene);
 
 // Decides which effects a render of this scene with these settings can need (see Effects).
 void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects);

@@ -63,6 +63,22 @@ static void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters) {
             add(SHAPE_TRIANGLE, i);
 }
 
+std::string OneColourWarning(const Scene *scene) {
+    if (scene->spheres.empty() && scene->triangles.empty())
+        return "the scene has no shapes: every pixel is the background colour";
+    color b = scene->background;
+    bool anyEmit = false; // (a material that emits, whether or not a shape uses it)
+    for (const Material &m : scene->materials)
+        anyEmit = anyEmit || Emits(&m);
+    bool unlit = scene->shading == SHADING_PATH ? !anyEmit : scene->ambient == 0;
+    if (scene->lights.empty() && unlit && b.x == 0 && b.y == 0 && b.z == 0)
+        return scene->shading == SHADING_PATH
+                   ? "nothing gives off light (no light, no material that emits, a black "
+                     "background): every pixel is black"
+                   : "no light, ambient 0 and a black background: every pixel is black";
+    return "";
+}
+
 void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects) {
     bool shapes = !scene->spheres.empty() || !scene->triangles.empty();
     bool lights = !scene->lights.empty(), path = scene->shading == SHADING_PATH;

@@ -241,7 +241,47 @@ static void TestPhong() {
                "R.V < 0: ambient + diffuse only, 0.1 + 0.5 * 0.0995");
 }
 
+// The scenes whose lit image can only be one colour, each for its reason, rendered to check the
+// prediction; and scenes one step away from them, which are not.
+static void TestOneColour() {
+    struct Case {
+        const char *text, *warning; // the scene; a piece of the warning, or "" for none
+        int byte;                   // the one value of every channel of every pixel; -1: several
+    };
+    const Case cases[] = {
+        {"size 8 8\nbackground 0.2 0.4 0.6\n", "no shapes", -1},
+        {"size 8 8\nambient 0\nmaterial m\nsphere 0 0 -5 1 m\n", "every pixel is black", 0},
+        {"size 8 8\nambient 0\nmaterial m mirror 1\nsphere 0 0 -5 1 m\n", "every pixel is black",
+         0},
+        {"size 8 8\nshading path\nmaterial m\nsphere 0 0 -5 1 m\n", "nothing gives off light", 0},
+        {"size 8 8\nambient 0.2\nmaterial m\nsphere 0 0 -5 1 m\n", "", -1},
+        {"size 8 8\nambient 0\nlight 0 5 0\nmaterial m\nsphere 0 0 -5 1 m\n", "", -1},
+        {"size 8 8\nambient 0\nbackground 0 0 1\nmaterial m\nsphere 0 0 -5 1 m\n", "", -1},
+        {"size 8 8\nshading path\nmaterial m emit 1 1 1\nsphere 0 0 -5 1 m\n", "", -1},
+    };
+    for (const Case &c : cases) {
+        Scene scene;
+        std::string error;
+        bool read = ParseSceneText(c.text, "one.scene", &scene, &error);
+        std::string warning = read ? OneColourWarning(&scene) : "(not read: " + error + ")";
+        bool expected =
+            c.warning[0] == 0 ? warning.empty() : warning.find(c.warning) != std::string::npos;
+        bool flat = true;
+        if (read && c.byte >= 0) {
+            RenderSettings s = TestSettings(&scene);
+            Image image;
+            RayStats stats = {};
+            Render(&scene, &s, &image, &stats);
+            for (uint8_t v : image.pixels)
+                flat = flat && v == c.byte;
+        }
+        CHECK(read && expected && flat, std::string("one colour? `") + c.text + "`: warning '" +
+                                            warning + "', as predicted, and the image agrees");
+    }
+}
+
 void TestEffects() {
+    TestOneColour();
     TestRayCounts();
     TestPlannedEffects();
     TestGlass();

@@ -178,6 +178,17 @@ static void TestBadInput(const std::string &dir) {
           "a 4 x 3 screen camera at the default 512 x 512: rendered, with a warning naming a size");
     CHECK(RunRay(dir, "stretched.scene --ray 0 0 0 0 0 -1", &err) == 0 && err.empty(),
           "and probed with --ray, which draws no image: no warning (" + err + ")");
+    // A scene that can only be one colour: rendered, with a warning; probed, or seen in a view,
+    // without one
+    std::ofstream(dir + "/dark.scene") << "size 8 8\nshading path\nmaterial m\nsphere 0 0 -5 1 m\n";
+    CHECK(RunRay(dir, "dark.scene -o d.png", &err) == 0 &&
+              err == "ray: warning: nothing gives off light (no light, no material that emits, a "
+                     "black background): every pixel is black\n" &&
+              RunRay(dir, "dark.scene --ray 0 0 0 0 0 -1", &err) == 0 && err.empty() &&
+              RunRay(dir, "dark.scene --view normal -o n.png", &err) == 0 && err.empty(),
+          "a scene where nothing gives light: rendered with one warning, probed and viewed "
+          "without (" +
+              err + ")");
     CHECK(RunRay(dir, "--spp 0 -o fresh.png", &err) == 2 && !FileExists(dir + "/fresh.png"),
           "a failed run creates no output file");
     CHECK(RunRay(dir, "--help", &err) == 0 &&
