@@ -211,8 +211,7 @@ void AnyHitsFrom(const Scene *scene, Methods methods, const Ray *rays, const Ray
 void TraceEyeRays(const Scene *scene, const RenderSettings *settings, const Ray *rays, int count,
                   TraceLog *log, color *sum);
 
-// ---- shade.cpp and path.cpp: an eye ray whose hit a packet found
-// ---------------------------------
+// ---- shade.cpp, path.cpp: an eye ray whose hit a packet found ------------------------------
 
 // What became of a surface's shadow ray toward each light, where it was cast before the surface
 // was shaded (TraceEyeRays): not cast (unknown), none needed (ShadowRay found no direction),

@@ -317,7 +317,7 @@ static std::string UnknownOption(const std::string &a) {
     size_t equals = a.find('=');
     std::string name = a.substr(0, equals);
     for (const auto &o : kOptions)
-        if (equals != std::string::npos && name == o.name && o.values == 1)
+        if (equals != std::string::npos && equals + 1 < a.size() && name == o.name && o.values == 1)
             return "unknown option '" + a + "': write '" + name + " " + a.substr(equals + 1) +
                    "' (see ray --help)";
     return "unknown option '" + a + "' (see ray --help)";

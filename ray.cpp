@@ -51,7 +51,8 @@ static bool LoadScene(const std::string &name, Scene *scene, std::string *defaul
         return true;
     // A bare word that names no file may be a built-in scene misremembered
     struct stat info;
-    if (name.find_first_of("/.") == std::string::npos && stat(name.c_str(), &info) != 0) {
+    if (name.find_first_of("/.") == std::string::npos && stat(name.c_str(), &info) != 0 &&
+        errno == ENOENT) {
         size_t n = sizeof kBuiltInScenes / sizeof kBuiltInScenes[0];
         std::string names;
         for (size_t k = 0; k < n; k++)

@@ -281,9 +281,8 @@ vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir);
 
 // The ray that leaves a hit in direction dir, and what it must not hit, by the self-hit method:
 // bound, from OffsetRayOrigin, passing over the triangle it leaves where PassesOver (robust.h);
-// epsilon,
-// from the hit point, ignoring hits closer than methods->epsilon; skip, from the hit point,
-// ignoring the shape it leaves.
+// epsilon, from the hit point, ignoring hits closer than methods->epsilon; skip, from the hit
+// point, ignoring the shape it leaves.
 void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray, RayStart *start);
 
 // The shadow ray from a hit to a light at lightPosition, leaving the surface as LeaveSurface

@@ -103,9 +103,10 @@ struct RayChain {
 };
 
 // A ray whose colour would count less than this in its pixel is not cast: 2^-12 is a sixteenth
-// of one 8-bit step (1/255). Without it, glass, which splits every ray in two, would cast up to
-// 2^depth - 1 rays per pixel (1,023 at depth 10); this is the adaptive tree-depth control of Hall &
-// Greenberg, "A Testbed for Realistic Image Synthesis", IEEE CG&A 3(8), 1983.
+// of one 8-bit step (1/255). Without it, clear glass, which splits every ray in two, would cast
+// up to 2^depth - 1 rays per pixel (1,023 at depth 10; glass that is also a mirror, more); this is
+// the adaptive tree-depth control of Hall & Greenberg, "A Testbed for Realistic Image Synthesis",
+// IEEE CG&A 3(8), 1983.
 const real kMinRayWeight = real(1) / 4096;
 
 // Rays cast, by kind, and Phong highlights evaluated. Each row of the image counts into its own

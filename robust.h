@@ -1,6 +1,7 @@
 // robust.h -- the parts of the robust triangle test that several files share: boxes along a
 // ray (the window a triangle's hit lies in, and the BVH's box test), the plane's t and its
-// error bound (plane.cpp), the watertight test's shear (watertight.cpp).
+// error bound (plane.cpp), the watertight test's shear (watertight.cpp), and rays that leave a
+// triangle (PassesOver, StartLeaving: geometry.cpp and path.cpp).
 #pragma once
 #include "ray.h"
 

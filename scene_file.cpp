@@ -43,25 +43,33 @@ static bool Once(const Statement *st, bool *seen, std::string *error) {
     return true;
 }
 
+// Whether a statement is one that only a Wavefront OBJ file holds, by its shape: a vertex, a
+// material library or its use, or an object, group or smoothing name of one word. (Not `f`,
+// nor `s` with numbers after it, which a scene file's mistyped `sphere` could be.)
+static bool LooksLikeObj(const std::vector<std::string> &t) {
+    const std::string &k = t[0];
+    if (k == "v" || k == "vt" || k == "vn" || k == "mtllib" || k == "usemtl")
+        return true;
+    return (k == "o" || k == "g" || k == "s") && t.size() == 2;
+}
+
 // What an unknown keyword may say about the mistake: a keyword in capitals, a Wavefront OBJ file
-// given where a scene file goes, or a file that is not text at all (a PNG image).
-static std::string KeywordHint(const std::string &k) {
+// given where a scene file goes, or a file that is not UTF-8 text (a PNG image).
+static std::string KeywordHint(const std::vector<std::string> &tokens) {
     static const char *const kKeywords[] = {"size",       "camera", "shading",  "ambient",
                                             "background", "depth",  "material", "sphere",
                                             "triangle",   "mesh",   "light"};
-    static const char *const kObj[] = {"v", "vt", "vn", "f", "o", "g", "s", "usemtl", "mtllib"};
-    std::string lower = k;
+    std::string lower = tokens[0];
     for (char &c : lower)
         c = (char)std::tolower((unsigned char)c);
     for (const char *keyword : kKeywords)
         if (lower == keyword)
             return " (keywords are written in lower case: '" + lower + "')";
-    for (const char *statement : kObj)
-        if (k == statement)
-            return " (this looks like an OBJ mesh: a scene file draws one with `mesh FILE "
-                   "MATERIAL`)";
-    if (!IsPrintableText(k))
-        return " (this does not look like a text file: a scene file is text, a statement a line)";
+    if (LooksLikeObj(tokens))
+        return " (this looks like a Wavefront OBJ mesh: a scene file draws one with `mesh FILE "
+               "MATERIAL`)";
+    if (!IsPrintableText(tokens[0]))
+        return " (it holds bytes that are not UTF-8 text: a scene file is text, not an image)";
     return "";
 }
 
@@ -91,7 +99,7 @@ static bool ReadSetting(const Statement *st, Scene *scene, Declared *declared, s
         if (!Once(st, &declared->background, error) || !Numbers(st, 1, 3, 4, v, error))
             return false;
         scene->background = {v[0], v[1], v[2]};
-        return CheckColor(st, "background", scene->background, error);
+        return CheckColor(st, "background", 1, scene->background, error);
     }
     if (k == "shading") {
         if (!Once(st, &declared->shading, error))
@@ -104,7 +112,7 @@ static bool ReadSetting(const Statement *st, Scene *scene, Declared *declared, s
                                            : SHADING_FLOOR;
         return true;
     }
-    return Fail(st, "unknown keyword " + Shown(k) + KeywordHint(k), error);
+    return Fail(st, "unknown keyword " + Shown(k) + KeywordHint(st->tokens), error);
 }
 
 // One statement: checks it and adds what it says to the scene.

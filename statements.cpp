@@ -38,14 +38,17 @@ bool WholeNumber(const Statement *st, size_t index, int lo, int hi, int *out, st
            Fail(st, st->tokens[0] + ": " + why, error);
 }
 
-// A colour (diffuse, ambient, background): each component in [0, 1]; the message shows the
-// numbers as read.
-bool CheckColor(const Statement *st, const std::string &what, color c, std::string *error) {
+// A colour (diffuse, ambient, background), read from tokens[first...]: each component in [0, 1];
+// the message shows the numbers as written.
+bool CheckColor(const Statement *st, const std::string &what, size_t first, color c,
+                std::string *error) {
     if (c.x >= 0 && c.x <= 1 && c.y >= 0 && c.y <= 1 && c.z >= 0 && c.z <= 1)
         return true;
-    char numbers[96];
-    snprintf(numbers, sizeof numbers, "%g %g %g", (double)c.x, (double)c.y, (double)c.z);
-    return Fail(st, what + " " + numbers + ": each component must be in [0, 1]", error);
+    const std::vector<std::string> &t = st->tokens;
+    return Fail(st,
+                what + " " + t[first] + " " + t[first + 1] + " " + t[first + 2] +
+                    ": each component must be in [0, 1]",
+                error);
 }
 
 // Light (a light's intensity, a material's emitted radiance): any finite amount >= 0, since a
@@ -146,12 +149,14 @@ bool ReadLight(const Statement *st, Scene *scene, std::string *error) {
 
 // `material NAME [diffuse R G B] [ambient R G B] [specular KS N] [mirror K] [glass IOR]
 // [emit R G B]`
-// One property of a material statement with its numbers v (already read): checked and set.
-static bool SetMaterialProperty(const Statement *st, const std::string &key, const real *v,
-                                Material *m, std::string *error) {
+// One property of a material statement, tokens[at], with its numbers v (already read): checked
+// and set.
+static bool SetMaterialProperty(const Statement *st, size_t at, const real *v, Material *m,
+                                std::string *error) {
+    const std::string &key = st->tokens[at];
     if (key == "diffuse" || key == "ambient") {
         color c = {v[0], v[1], v[2]};
-        if (!CheckColor(st, "material: " + key, c, error))
+        if (!CheckColor(st, "material: " + key, at + 1, c, error))
             return false;
         (key == "diffuse" ? m->diffuse : m->ambient) = c;
     } else if (key == "specular") {
@@ -221,7 +226,7 @@ bool ReadMaterial(const Statement *st, Scene *scene, std::string *error) {
             if (!ParseReal(st->tokens[k + 1 + j], &v[j], &why))
                 return Fail(st, "material: " + key + ": " + why, error);
         }
-        if (!SetMaterialProperty(st, key, v, &m, error))
+        if (!SetMaterialProperty(st, k, v, &m, error))
             return false;
         k += 1 + count;
     }

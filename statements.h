@@ -33,9 +33,10 @@ bool Numbers(const Statement *st, size_t first, int count, size_t total, real *o
 // tokens[index] as a whole number in [lo, hi].
 bool WholeNumber(const Statement *st, size_t index, int lo, int hi, int *out, std::string *error);
 
-// A colour (diffuse, ambient, background): each component in [0, 1]; the message shows the
-// numbers as read.
-bool CheckColor(const Statement *st, const std::string &what, color c, std::string *error);
+// A colour (diffuse, ambient, background), read from tokens[first...]: each component in [0, 1];
+// the message shows the numbers as written.
+bool CheckColor(const Statement *st, const std::string &what, size_t first, color c,
+                std::string *error);
 
 // The shapes, lights and materials the scene holds so far (against kMaxObjects).
 size_t ObjectCount(const Scene *scene);

@@ -241,23 +241,26 @@ static void TestPhong() {
                "R.V < 0: ambient + diffuse only, 0.1 + 0.5 * 0.0995");
 }
 
-// The scenes whose lit image can only be one colour, each for its reason, rendered to check the
-// prediction; and scenes one step away from them, which are not.
+// The scenes whose lit image can only be one colour, each for its reason, and scenes one step
+// away from them, which are not: each rendered, to check the prediction against the image.
 static void TestOneColour() {
     struct Case {
         const char *text, *warning; // the scene; a piece of the warning, or "" for none
-        int byte;                   // the one value of every channel of every pixel; -1: several
+        int rgb[3];                 // the one colour of every pixel, 8 bits a channel; -1: several
     };
     const Case cases[] = {
-        {"size 8 8\nbackground 0.2 0.4 0.6\n", "no shapes", -1},
-        {"size 8 8\nambient 0\nmaterial m\nsphere 0 0 -5 1 m\n", "every pixel is black", 0},
-        {"size 8 8\nambient 0\nmaterial m mirror 1\nsphere 0 0 -5 1 m\n", "every pixel is black",
-         0},
-        {"size 8 8\nshading path\nmaterial m\nsphere 0 0 -5 1 m\n", "nothing gives off light", 0},
-        {"size 8 8\nambient 0.2\nmaterial m\nsphere 0 0 -5 1 m\n", "", -1},
-        {"size 8 8\nambient 0\nlight 0 5 0\nmaterial m\nsphere 0 0 -5 1 m\n", "", -1},
-        {"size 8 8\nambient 0\nbackground 0 0 1\nmaterial m\nsphere 0 0 -5 1 m\n", "", -1},
-        {"size 8 8\nshading path\nmaterial m emit 1 1 1\nsphere 0 0 -5 1 m\n", "", -1},
+        {"size 8 8\nbackground 0.2 0.4 0.6\n", "no shapes", {51, 102, 153}},
+        {"size 8 8\nambient 0\nmaterial m\nsphere 0 0 -5 1 m\n", "every pixel is black", {0, 0, 0}},
+        {"size 8 8\nambient 0\nmaterial m mirror 1\nsphere 0 0 -5 1 m\n",
+         "every pixel is black",
+         {0, 0, 0}},
+        {"size 8 8\nshading path\nmaterial m\nsphere 0 0 -5 1 m\n",
+         "nothing gives off light",
+         {0, 0, 0}},
+        {"size 8 8\nambient 0.2\nmaterial m\nsphere 0 0 -5 1 m\n", "", {-1}},
+        {"size 8 8\nambient 0\nlight 0 5 0\nmaterial m\nsphere 0 0 -5 1 m\n", "", {-1}},
+        {"size 8 8\nambient 0\nbackground 0 0 1\nmaterial m\nsphere 0 0 -5 1 m\n", "", {-1}},
+        {"size 8 8\nshading path\nmaterial m emit 1 1 1\nsphere 0 0 -5 1 m\n", "", {-1}},
     };
     for (const Case &c : cases) {
         Scene scene;
@@ -266,17 +269,21 @@ static void TestOneColour() {
         std::string warning = read ? OneColourWarning(&scene) : "(not read: " + error + ")";
         bool expected =
             c.warning[0] == 0 ? warning.empty() : warning.find(c.warning) != std::string::npos;
-        bool flat = true;
-        if (read && c.byte >= 0) {
+        Image image = {0, 0, {}};
+        if (read) {
             RenderSettings s = TestSettings(&scene);
-            Image image;
             RayStats stats = {};
             Render(&scene, &s, &image, &stats);
-            for (uint8_t v : image.pixels)
-                flat = flat && v == c.byte;
         }
-        CHECK(read && expected && flat, std::string("one colour? `") + c.text + "`: warning '" +
-                                            warning + "', as predicted, and the image agrees");
+        bool flat = !image.pixels.empty(), agrees = true; // (flat: every pixel as the first)
+        for (size_t k = 0; k < image.pixels.size(); k++) {
+            flat = flat && image.pixels[k] == image.pixels[k % 3];
+            agrees = agrees && (c.rgb[0] < 0 || image.pixels[k] == c.rgb[k % 3]);
+        }
+        CHECK(read && expected && agrees && flat == (c.rgb[0] >= 0),
+              std::string("one colour? `") + c.text + "`: warning '" + warning +
+                  "', as predicted, and the image " +
+                  (c.rgb[0] >= 0 ? "all of the predicted colour" : "of more than one colour"));
     }
 }
 

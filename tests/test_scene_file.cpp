@@ -1,6 +1,7 @@
 // tests/test_scene_file.cpp -- scene files: every error names its line, valid variations read
 // the same, the three cameras make the rays worked out by hand, and the built-in scenes' files
 // draw the built-in scenes' bytes.
+#include "../io.h"
 #include "../render.h"
 #include "test.h"
 
@@ -89,8 +90,10 @@ static const BadScene kBadScenes[] = {
     // an unknown keyword says what the mistake may be
     {"Sphere 0 0 -5 1 m", 1,
      "unknown keyword 'Sphere' (keywords are written in lower case: 'sphere')"},
-    {"# a model\nv 0 0 0\nf 1 1 1\n", 2, "unknown keyword 'v' (this looks like an OBJ mesh"},
-    {"\x89PNG\r\n", 1, "unknown keyword '?PNG' (this does not look like a text file"},
+    {"# a model\nv 0 0 0\nf 1 1 1\n", 2, "unknown keyword 'v' (this looks like a Wavefront OBJ"},
+    {"o Cube\nv 0 0 0\n", 1, "unknown keyword 'o' (this looks like a Wavefront OBJ"},
+    {"\x89PNG\r\n", 1, "unknown keyword '?PNG' (it holds bytes that are not UTF-8 text"},
+    {"material m diffuse 1.0000001 0 0", 1, "diffuse 1.0000001 0 0: each component"},
 };
 
 static void TestSceneErrors() {
@@ -107,9 +110,20 @@ static void TestSceneErrors() {
     }
     Scene scene;
     std::string error;
-    CHECK(!ParseSceneText("bogus\n", "s.scene", &scene, &error) &&
-              error == "s.scene:1: unknown keyword 'bogus'",
-          "an unknown keyword that no hint fits: the message alone (got: " + error + ")");
+    // Where no hint fits, the message alone: a mistyped `sphere` is not taken for OBJ's `s`, nor
+    // a stray `f` for a face; a Latin-1 line is text, but not UTF-8, and is told so
+    const struct {
+        const char *text, *message;
+    } unknown[] = {
+        {"bogus 1\n", "s.scene:1: unknown keyword 'bogus'"},
+        {"s 0 0 -5 1 m\n", "s.scene:1: unknown keyword 's'"},
+        {"f 1 2 3\n", "s.scene:1: unknown keyword 'f'"},
+        {"sph\xe8re 0 0 -5 1 m\n", "s.scene:1: unknown keyword 'sph?re' (it holds bytes that are "
+                                   "not UTF-8 text: a scene file is text, not an image)"},
+    };
+    for (const auto &u : unknown)
+        CHECK(!ParseSceneText(u.text, "s.scene", &scene, &error) && error == u.message,
+              "`" + PrintableLine(u.text) + "`: " + u.message + " (got: " + error + ")");
 }
 
 // Comments, tabs, CRLF, signs and scientific notation read as the plain form does.
