@@ -259,6 +259,8 @@ static color PixelColor(const Scene *scene, const RenderSettings *settings, int 
         result = AdaptivePathPixel(scene, settings, i, j, &log);
     } else if (settings->sampling == SAMPLES_ADAPTIVE && n > 5) {
         result = AdaptivePixel(scene, settings, i, j, &log);
+    } else if (n == 1) { // the pixel's centre, as GridPosition places the one sample of one cell
+        result = TraceSample(scene, settings, {i + real(0.5), j + real(0.5)}, i, j, 0, &log);
     } else {
         bool jitter = settings->sampling != SAMPLES_GRID && n > 1;
         GridCell cell = *firstCell;
