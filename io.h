@@ -64,7 +64,8 @@ LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::stri
 // Splits a line into tokens at spaces and tabs, up to a `#` (the rest is a comment).
 void Tokenize(const std::string &line, std::vector<std::string> *tokens);
 
-// A token as it may be shown in a message: quoted, at most 40 characters, unprintable bytes as ?.
+// A token as it may be shown in a message: quoted, at most 40 characters; UTF-8 text as written,
+// control characters and bytes that are not UTF-8 as ?.
 std::string Shown(const std::string &token);
 
 // A message as one printable line: control characters (C0, DEL and C1, and the Unicode line and

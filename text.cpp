@@ -64,15 +64,6 @@ void Tokenize(const std::string &line, std::vector<std::string> *tokens) {
     }
 }
 
-// A token as it may be shown in a message: at most 40 characters, unprintable bytes as '?'.
-std::string Shown(const std::string &token) {
-    std::string s = token.substr(0, 40);
-    for (char &c : s)
-        if ((unsigned char)c < 32 || (unsigned char)c > 126)
-            c = '?';
-    return "'" + s + (token.size() > 40 ? "...'" : "'");
-}
-
 // How many bytes from s[i] make one UTF-8 character (Unicode 15, table 3-7: no overlong form, no
 // surrogate, nothing past U+10FFFF), and its code point; 0 if they do not make one.
 static int Utf8Character(const std::string &s, size_t i, uint32_t *point) {
@@ -98,13 +89,36 @@ static int Utf8Character(const std::string &s, size_t i, uint32_t *point) {
     return n;
 }
 
+// Whether code point p is a control character (C0, DEL and C1) or a Unicode line or paragraph
+// separator: what a terminal acts on rather than shows.
+static bool IsControl(uint32_t p) {
+    return p < 0x20 || (p >= 0x7f && p <= 0x9f) || p == 0x2028 || p == 0x2029;
+}
+
+// A token as it may be shown in a message: at most 40 characters, each a printable UTF-8
+// character as written ("sphère" stays "sphère") or, for a control character or a byte that is
+// not UTF-8, '?'. (Counted in characters, so a cut never splits one.)
+std::string Shown(const std::string &token) {
+    const int kMost = 40;
+    std::string s;
+    size_t i = 0;
+    for (int shown = 0; i < token.size() && shown < kMost; shown++) {
+        uint32_t p = 0;
+        int n = Utf8Character(token, i, &p);
+        if (n > 0 && !IsControl(p))
+            s.append(token, i, n), i += n;
+        else
+            s += '?', i++;
+    }
+    return "'" + s + (i < token.size() ? "...'" : "'");
+}
+
 std::string PrintableLine(const std::string &text) {
     std::string line;
     for (size_t i = 0; i < text.size();) {
         uint32_t p = 0;
         int n = Utf8Character(text, i, &p);
-        bool control = p < 0x20 || (p >= 0x7f && p <= 0x9f) || p == 0x2028 || p == 0x2029;
-        if (n > 0 && !control) {
+        if (n > 0 && !IsControl(p)) {
             line.append(text, i, n), i += n;
         } else if (text[i] == '\n') {
             line += "\\n", i++;

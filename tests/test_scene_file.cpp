@@ -120,10 +120,26 @@ static void TestSceneErrors() {
         {"f 1 2 3\n", "s.scene:1: unknown keyword 'f'"},
         {"sph\xe8re 0 0 -5 1 m\n", "s.scene:1: unknown keyword 'sph?re' (it holds bytes that are "
                                    "not UTF-8 text: a scene file is text, not an image)"},
+        // UTF-8 is shown as written, 40 characters at most (not bytes: no character is cut)
+        {"sph\xc3\xa8re 0 0 -5 1 m\n", "s.scene:1: unknown keyword 'sph\xc3\xa8re'"},
+        {"\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83"
+         "\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83"
+         "\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83"
+         "\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83"
+         "\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83"
+         "\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83"
+         "\xe7\x90\x83\n", // 43 of the character U+7403
+         nullptr},
     };
-    for (const auto &u : unknown)
-        CHECK(!ParseSceneText(u.text, "s.scene", &scene, &error) && error == u.message,
-              "`" + PrintableLine(u.text) + "`: " + u.message + " (got: " + error + ")");
+    std::string forty; // the 43-character keyword's message: its first 40, then "..."
+    for (int k = 0; k < 40; k++)
+        forty += "\xe7\x90\x83";
+    std::string cut = "s.scene:1: unknown keyword '" + forty + "...'";
+    for (const auto &u : unknown) {
+        std::string message = u.message ? u.message : cut;
+        CHECK(!ParseSceneText(u.text, "s.scene", &scene, &error) && error == message,
+              "`" + PrintableLine(u.text) + "`: " + message + " (got: " + error + ")");
+    }
 }
 
 // Comments, tabs, CRLF, signs and scientific notation read as the plain form does.
