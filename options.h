@@ -1,6 +1,5 @@
 // options.h -- the command line of the program (options.cpp), for ray.cpp.
-#ifndef RT_OPTIONS_H
-#define RT_OPTIONS_H
+#pragma once
 
 #include "io.h"
 #include "ray.h"
@@ -35,5 +34,3 @@ bool ParseOptions(int argc, char **argv, Options *opt, std::string *error);
 
 // The methods the options choose: the set (--methods), then each single-method option given.
 Methods ChosenMethods(const Options *opt);
-
-#endif

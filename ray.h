@@ -9,8 +9,7 @@
 // double, or float when built with -DRT_FLOAT, the ray_float program); layout.h, the committed
 // scene and its fast search; robust.h, what the robust triangle test's files share; io.h, image
 // files, text, OBJ meshes, probes and debug views.
-#ifndef RAY_H
-#define RAY_H
+#pragma once
 
 #include "numbers.h"
 
@@ -309,5 +308,3 @@ bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
 void BuildDefaultScene(Scene *scene); // the assignment scene (the handout's scene;
                                       // scenes/reference.scene holds it as a file)
 void BuildTestScene(Scene *scene);    // rt's own test scene
-
-#endif
