@@ -210,14 +210,14 @@ static bool ReadCorner(const std::string &corner, size_t vertexCount, size_t *ve
 // `f c1 c2 ... cn`: n - 2 triangles (c1, c2, c3), (c1, c3, c4), ..., a fan from the first corner
 // that keeps the face's winding, degenerate ones included (they are harmless: no ray hits them).
 static bool ReadFace(const std::vector<std::string> &tokens, const std::vector<vec3> &vertices,
-                     int material, size_t maxTriangles, std::vector<Triangle> *triangles,
+                     int material, size_t most, std::vector<Triangle> *triangles,
                      std::string *error) {
     size_t corners = tokens.size() - 1;
     if (corners < 3) {
         *error = "f: a face needs at least 3 corners, this one has " + std::to_string(corners);
         return false;
     }
-    if (triangles->size() + (corners - 2) > maxTriangles) {
+    if (triangles->size() + (corners - 2) > most) { // most: how many *triangles may hold
         *error = "too many triangles: rt's limit of shapes in a scene is reached";
         return false;
     }
@@ -239,7 +239,7 @@ bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<M
     std::vector<vec3> vertices;
     std::vector<std::string> tokens;
     std::string line, why;
-    size_t faces = 0;
+    size_t faces = 0, most = triangles->size() + maxTriangles; // (maxTriangles more, at most)
     int lineNumber = 1;
     for (;; lineNumber++) {
         LineStatus status = ReadTextLine(file, lineNumber, &line, &why);
@@ -254,7 +254,7 @@ bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<M
         if (!tokens.empty() && tokens[0] == "v")
             read = ReadVertex(tokens, steps, &vertices, &why);
         if (!tokens.empty() && tokens[0] == "f") {
-            read = ReadFace(tokens, vertices, material, maxTriangles, triangles, &why);
+            read = ReadFace(tokens, vertices, material, most, triangles, &why);
             faces++;
         }
         if (!read)

@@ -136,6 +136,22 @@ static void TestObjErrors() {
     bool read = ReadObjText(three + "v 1 1 0\nf 1 2 3 4\nf 1 2 3\n", {}, &triangles, &error, 2);
     CHECK(!read && error.rfind("m.obj:6: too many triangles", 0) == 0,
           "a third triangle beyond a limit of 2: refused at line 6 (got: " + error + ")");
+    // The limit counts this mesh's triangles, not those already in the scene: after 3 triangles
+    // of an earlier mesh, 2 more are allowed (a quad), and a third is refused
+    for (bool third : {false, true}) {
+        std::string text = three + "v 1 1 0\nf 1 2 3 4\n" + (third ? "f 1 2 3\n" : "");
+        FILE *file = fmemopen((void *)text.data(), text.size(), "r");
+        if (!file)
+            continue;
+        std::vector<Triangle> scene(3, Triangle{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0});
+        read = ReadObj(file, "m.obj", 0, {}, 2, &scene, &error);
+        fclose(file);
+        CHECK(third ? !read && error.rfind("m.obj:6: too many triangles", 0) == 0
+                    : read && scene.size() == 5,
+              std::string(third ? "a third triangle of a second mesh: refused at line 6"
+                                : "a quad after another mesh's 3 triangles: read, 5 in all") +
+                  " (got: " + (read ? "read, " + std::to_string(scene.size()) : error) + ")");
+    }
 }
 
 // The vertex (1, 2, 3) moved by the transform words `words`.
