@@ -198,6 +198,15 @@ inline vec3 SafeNormalize(vec3 v) {
     return length > 0 ? (1 / length) * w : w;
 }
 
+// Both at once, with one rescaling: returns SafeLength(v) and sets *unit to SafeNormalize(v).
+inline real LengthAndDirection(vec3 v, vec3 *unit) {
+    int k = UnitExponent(v);
+    vec3 w = ScaleByPowerOfTwo(v, k);
+    real length = Length(w);
+    *unit = length > 0 ? (1 / length) * w : w;
+    return ScaleByPowerOfTwo(length, -k);
+}
+
 // A vector in double, whatever `real` is: plane.cpp's first tier computes in double.
 struct dvec3 {
     double x, y, z;

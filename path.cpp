@@ -170,13 +170,13 @@ static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
     else
         p = SampleTriangle(&path->scene->triangles[e->index],
                            PathRandomPair(&path->sample, path->bounce, EMITTER_UV));
-    vec3 toPoint = p - hit->point;
-    real dist2 = Dot(toPoint, toPoint), dist = std::sqrt(dist2);
-    real cosTheta = Dot(hit->normal, toPoint) / dist, cosLight = std::fabs(Dot(n, toPoint)) / dist;
+    vec3 toPoint = p - hit->point, w; // (the distance and the direction rescaled: no squares)
+    real distance = LengthAndDirection(toPoint, &w);
+    real cosTheta = Dot(hit->normal, w), cosLight = std::fabs(Dot(n, w));
     if (!(cosTheta > 0) || !(cosLight > 0) || !Faces(path->scene, e, hit, p, n) ||
         !EmitterVisible(path, hit, e, p))
         return {0, 0, 0};
-    real pdf = EmitterPdf(emitters.size(), e->area, dist2, cosLight);
+    real pdf = EmitterPdf(emitters.size(), e->size, distance, cosLight);
     real weight = path->settings->path.lights == LIGHTS_MIS && !last // (no scattered ray follows
                       ? PowerHeuristic(pdf, ScatterPdf(path->settings->path.scatter, cosTheta))
                       : 1; // the last vertex to share the light with)
@@ -193,10 +193,11 @@ static real EmissionWeight(const Path *path, const RayHit *hit) {
     if (lights == LIGHTS_NEE)
         return 0;
     Emitter e = {hit->shape, hit->index, 0, {0, 0, 0}, {0, 0, 0}};
-    real distance = hit->t * SafeLength(path->ray.dir);
-    real cosLight = std::fabs(Dot(hit->normal, path->ray.dir)) / SafeLength(path->ray.dir);
-    real pdf = EmitterPdf(path->settings->effects.emitters.size(), EmitterArea(path->scene, &e),
-                          distance * distance, cosLight);
+    vec3 w;
+    real distance = hit->t * LengthAndDirection(path->ray.dir, &w);
+    real cosLight = std::fabs(Dot(hit->normal, w));
+    real pdf = EmitterPdf(path->settings->effects.emitters.size(), EmitterSize(path->scene, &e),
+                          distance, cosLight);
     return PowerHeuristic(path->scatterPdf, pdf);
 }
 

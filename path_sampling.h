@@ -134,9 +134,13 @@ static vec3 SampleTriangle(const Triangle *t, vec2 uv) {
 }
 
 // The density, per solid angle at the shaded point, with which next-event estimation picks a
-// point of an emitter of this area, seen dist2 away (squared) at cosine cosLight to its normal:
-// 1 / count for the emitter, 1 / area for the point, times dist2 / cosLight from area to solid
-// angle.
-static real EmitterPdf(size_t count, real area, real dist2, real cosLight) {
-    return dist2 / ((real)count * area * cosLight);
+// point of an emitter of this size (the square root of its area, EmitterSize), seen `distance`
+// away at cosine cosLight to its normal: 1 / count for the emitter, 1 / area for the point,
+// times distance^2 / cosLight from area to solid angle. Written as (distance / size)^2, a ratio
+// of lengths squared: a squared distance alone leaves the range of numbers in a scene 1e160
+// units wide (double) or 1e20 (float), or 1e-160 and 1e-20, while the ratio is the same at
+// every scale.
+static real EmitterPdf(size_t count, real size, real distance, real cosLight) {
+    real ratio = distance / size;
+    return ratio * ratio / ((real)count * cosLight);
 }

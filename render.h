@@ -15,7 +15,7 @@
 struct Emitter {
     ShapeKind shape;
     int index;
-    real area;   // EmitterArea, once per render (every light sample divides by it)
+    real size;   // EmitterSize, once per render (every light sample divides by it)
     vec3 normal; // a triangle's unit normal, once per render (every light sample uses it)
     color emit;  // its material's emitted radiance
 };
@@ -177,8 +177,10 @@ real SchlickReflectance(real cosI, real eta);
 // Whether a material gives off light (`emit` above 0 in some channel).
 bool Emits(const Material *m);
 
-// The surface area of an emitting shape (where PlanEffects finds the emitters).
-real EmitterArea(const Scene *scene, const Emitter *e);
+// The square root of an emitting shape's surface area (where PlanEffects finds the emitters): a
+// length, like the distances it is divided into, so that their ratio, unlike an area and a
+// squared distance, stays in the range of numbers at every scale.
+real EmitterSize(const Scene *scene, const Emitter *e);
 
 // ---- path.cpp: `shading path` -----------------------------------------------------------------
 

@@ -21,26 +21,36 @@ static bool MaterialIsUsed(const Scene *scene, int material) {
 
 bool Emits(const Material *m) { return m->emit.x > 0 || m->emit.y > 0 || m->emit.z > 0; }
 
-real EmitterArea(const Scene *scene, const Emitter *e) {
-    if (e->shape == SHAPE_SPHERE) {
-        real r = scene->spheres[e->index].radius;
-        return 4 * kPi * r * r;
-    }
-    const Triangle *t = &scene->triangles[e->index];
-    return real(0.5) * SafeLength(Cross(t->b - t->a, t->c - t->a));
+// A triangle's (b - a) x (c - a) with both edges first multiplied by 2^*k, the power of two
+// that brings the larger edge's largest component into [1, 2): unscaled, the product of two
+// edges of 1e200 (or 1e-200) would overflow (or underflow); scaled, its direction is exact and
+// its length is 2^2k times the true one.
+static vec3 ScaledEdgeCross(const Triangle *t, int *k) {
+    vec3 e1 = t->b - t->a, e2 = t->c - t->a;
+    *k = UnitExponent(MaxComponent(e1) > MaxComponent(e2) ? e1 : e2);
+    return Cross(ScaleByPowerOfTwo(e1, *k), ScaleByPowerOfTwo(e2, *k));
 }
 
-// An emitting shape, with what every light sample reads: its area, (a triangle) its unit
+real EmitterSize(const Scene *scene, const Emitter *e) {
+    if (e->shape == SHAPE_SPHERE) // area 4 pi r^2
+        return std::sqrt(4 * kPi) * scene->spheres[e->index].radius;
+    int k; // area |e1 x e2| / 2, from the scaled cross product: 2^-2k |n| / 2
+    vec3 n = ScaledEdgeCross(&scene->triangles[e->index], &k);
+    return ScaleByPowerOfTwo(std::sqrt(real(0.5) * SafeLength(n)), -k);
+}
+
+// An emitting shape, with what every light sample reads: its size, (a triangle) its unit
 // normal, and its radiance, once per render.
 static Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index) {
     Emitter e = {shape, index, 0, {0, 0, 0}, {0, 0, 0}};
-    e.area = EmitterArea(scene, &e);
+    e.size = EmitterSize(scene, &e);
     if (shape == SHAPE_SPHERE) {
         e.emit = scene->materials[scene->spheres[index].material].emit;
         return e;
     }
     const Triangle *t = &scene->triangles[index];
-    e.normal = SafeNormalize(Cross(t->b - t->a, t->c - t->a));
+    int k;
+    e.normal = SafeNormalize(ScaledEdgeCross(t, &k));
     e.emit = scene->materials[t->material].emit;
     return e;
 }
@@ -52,7 +62,7 @@ static void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters) {
     // sampled: it is left out, so no density is ever divided by 0 or infinity.)
     auto add = [scene, emitters](ShapeKind shape, int index) {
         Emitter e = MakeEmitter(scene, shape, index);
-        if (e.area > 0 && std::isfinite(e.area))
+        if (e.size > 0 && std::isfinite(e.size))
             emitters->push_back(e);
     };
     for (int i = 0; i < (int)scene->spheres.size(); i++)

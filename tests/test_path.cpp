@@ -151,6 +151,54 @@ static void TestInsideGlowingSphere() {
     }
 }
 
+// Next-event estimation at every scale the robustness summary claims: an emitter's density is
+// a ratio of lengths (EmitterPdf), never an area over a squared distance, which leave the range
+// of numbers in a scene 1e160 wide (1e20 in float) or that small. Inside the glowing sphere of
+// radius 10 s, one ray and its lamp sample give exactly Le (1 + rho) at every scale s; inside a
+// glowing octahedron of radius s (triangles: a sampled point is not a sphere's, so its estimate
+// varies), the mean of 64 pixels is Le (1 + rho), within 4 standard errors.
+static void TestEmittersAtEveryScale() {
+#ifdef RT_FLOAT
+    const real scales[] = {real(1e-37), real(1e-22), 1, real(1e19), real(1e36)};
+#else
+    const real scales[] = {real(1e-300), real(1e-170), 1, real(1e154), real(1e300)};
+#endif
+    for (real scale : scales) {
+        char text[32];
+        snprintf(text, sizeof text, " (scale %g)", (double)scale);
+        std::string at = text;
+        Scene sphere = InsideGlowingSphere(real(0.5), 1);
+        sphere.spheres[0].radius = 10 * scale, sphere.depth = 1;
+        RenderSettings s = PathSettings(&sphere, 2, {SCATTER_COSINE, LIGHTS_NEE, true, 0});
+        RayStats stats = {};
+        CHECK_NEAR(Pixel(&sphere, &s, 3, 4, &stats).x, 1.5, 8 * kRelTol,
+                   "inside a glowing sphere, one ray and its lamp sample: Le (1 + rho)" + at);
+        Scene octahedron = PathScene(8);
+        octahedron.materials = sphere.materials, octahedron.depth = 1;
+        vec3 p[6] = {{scale, 0, 0},  {-scale, 0, 0}, {0, scale, 0},
+                     {0, -scale, 0}, {0, 0, scale},  {0, 0, -scale}};
+        int f[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                       {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+        for (auto &t : f)
+            octahedron.triangles.push_back({p[t[0]], p[t[1]], p[t[2]], 0});
+        for (LightMethod lights : {LIGHTS_NEE, LIGHTS_MIS}) {
+            RenderSettings o = PathSettings(&octahedron, 16, {SCATTER_COSINE, lights, true, 0});
+            double sum = 0, sum2 = 0;
+            for (int j = 0; j < 8; j++)
+                for (int i = 0; i < 8; i++) {
+                    double v = Pixel(&octahedron, &o, i, j, &stats).x;
+                    sum += v, sum2 += v * v;
+                }
+            double mean = sum / 64, error = std::sqrt((sum2 / 64 - mean * mean) / 63);
+            CHECK(std::fabs(mean - 1.5) <= 4 * error && error > 0,
+                  std::string(lights == LIGHTS_NEE ? "next-event estimation" : "MIS") +
+                      " inside a glowing octahedron: Le (1 + rho) = 1.5 within 4 standard "
+                      "errors (" +
+                      std::to_string(mean) + " +- " + std::to_string(error) + ")" + at);
+        }
+    }
+}
+
 // A small Cornell-like box: white, red and green walls, a lamp patch under the ceiling, a white
 // sphere, one point light; n x n pixels.
 static Scene SmallBox(int n) {
@@ -362,6 +410,7 @@ void TestPath() {
     TestWhiteFurnace();
     TestWallUnderPointLight();
     TestInsideGlowingSphere();
+    TestEmittersAtEveryScale();
     TestConvergence();
     TestMethodsAgree();
     TestSphereLampAgrees();
