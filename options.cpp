@@ -62,8 +62,9 @@ const char *kUsage =
     "  --pixel X Y              the tree of rays behind pixel (X, Y)\n"
     "\n"
     "comparing:\n"
-    "  --compare A.png B.png    RMSE, PSNR, largest difference, pixels over the tolerance;\n"
-    "                           -o FILE writes a heat map; exit 0 within tolerance, 1 outside\n"
+    "  --compare A.png B.png    RMSE, PSNR, largest difference, pixels over the tolerance\n"
+    "                           (PNG or PPM images); -o FILE writes a heat map; exit 0 within\n"
+    "                           tolerance, 1 outside\n"
     "  --tolerance T            largest channel difference (0..255) still counted equal (0)\n"
     "\n"
     "  --help, --version        this text; the version\n";

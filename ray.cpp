@@ -132,8 +132,8 @@ static int Compare(const Options *opt) {
         Complain(error);
         return status;
     }
-    if (!ReadPng(opt->compareA.c_str(), &a, &error) ||
-        !ReadPng(opt->compareB.c_str(), &b, &error)) {
+    if (!ReadImage(opt->compareA.c_str(), &a, &error) ||
+        !ReadImage(opt->compareB.c_str(), &b, &error)) {
         Complain(error);
         return 2;
     }

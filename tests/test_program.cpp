@@ -299,6 +299,52 @@ static void TestProbesInProgram(const std::string &dir) {
           "--pixel outside the image: exit 2");
 }
 
+// --compare reads PPM as well as PNG: rt's own .ppm, and the plain text P3 that a student's first
+// ray tracer may print, each the same picture as rt's PNG. A file that is no image, or is cut
+// short, is exit 2 with a message saying which.
+static void TestComparePpm(const std::string &dir) {
+    std::string err;
+    RunRay(dir, "--size 4 -o four.png", &err), RunRay(dir, "--size 4 -o four.ppm", &err);
+    CHECK(RunRay(dir, "--compare four.png four.ppm", &err) == 0 &&
+              ReadOutput(dir).find("largest difference: 0") != std::string::npos,
+          "--compare of rt's PNG with its PPM: the same picture, exit 0 (" + err + ")");
+    Image four;
+    std::string readError;
+    if (!ReadPng((dir + "/four.png").c_str(), &four, &readError))
+        return;
+    std::string plain = "P3\n# a student's image\n4 4\n255\n", fifteen = "P3 4 4 15 ";
+    std::string wide = "P6 4 4 65535\n";
+    for (unsigned char v : four.pixels) {
+        plain += std::to_string(v) + (plain.size() % 60 < 4 ? "\n" : " ");
+        fifteen += std::to_string((v * 15 + 127) / 255) + " "; // rounded to 0..15
+        wide += std::string(2, (char)v);                       // v * 257, most significant first
+    }
+    std::ofstream(dir + "/plain.ppm") << plain;
+    std::ofstream(dir + "/fifteen.ppm") << fifteen;
+    std::ofstream(dir + "/wide.ppm", std::ios::binary) << wide;
+    std::ofstream(dir + "/cut.ppm") << plain.substr(0, plain.size() - 8);
+    CHECK(RunRay(dir, "--compare four.png plain.ppm", &err) == 0,
+          "a plain (P3) PPM with a comment: the same picture, exit 0 (" + err + ")");
+    CHECK(RunRay(dir, "--compare four.png wide.ppm", &err) == 0,
+          "a P6 PPM of 16-bit samples: rescaled to the same picture, exit 0 (" + err + ")");
+    CHECK(RunRay(dir, "--compare four.png fifteen.ppm --tolerance 9", &err) == 0 &&
+              ReadOutput(dir).find("largest difference: 0\n") == std::string::npos,
+          "samples of 0..15, rescaled: within 255 / 15 / 2 levels, not equal (" + err + ")");
+    std::ofstream(dir + "/text.png") << "not an image\n";
+    std::ofstream(dir + "/nothing.png");
+    const struct {
+        const char *file, *message;
+    } bad[] = {{"cut.ppm", "cut.ppm: the PPM ends before its 4 x 4 pixels"},
+               {"text.png", "text.png: not a PNG or PPM image"},
+               {"nothing.png", "nothing.png: an empty file, not an image"},
+               {".", ".: Is a directory"}};
+    for (const auto &b : bad)
+        CHECK(RunRay(dir, "--compare four.png " + std::string(b.file), &err) == 2 &&
+                  err.find(b.message) != std::string::npos,
+              std::string("--compare with ") + b.file + ": exit 2, " + b.message + " (" + err +
+                  ")");
+}
+
 static void TestCompareInProgram(const std::string &dir) {
     std::string err;
     RunRay(dir, "--size 32 -o a.png", &err);
@@ -328,6 +374,7 @@ static void TestCompareInProgram(const std::string &dir) {
     CHECK(read && sixteen.width == 1 && sixteen.height == 1 && sixteen.pixels[0] == 200 &&
               sixteen.pixels[1] == 100 && sixteen.pixels[2] == 50,
           "a 16-bit PNG of (200, 100, 50) x 257 reads as the 8-bit (200, 100, 50)");
+    TestComparePpm(dir);
 }
 
 // An error is one line, even where it quotes a name with a newline in it: the newline is
