@@ -234,12 +234,19 @@ static bool ReadFace(const std::vector<std::string> &tokens, const std::vector<v
     return true;
 }
 
+// What an error adds when the file has `V` or `F` lines, which OBJ skips as statements it does not
+// know: its keywords are lower case.
+static std::string CapitalsHint(int capitals) {
+    return capitals == 0 ? "" : " (lines that begin 'V' or 'F' were skipped: OBJ is lower case)";
+}
+
 bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<MeshStep> &steps,
              size_t maxTriangles, std::vector<Triangle> *triangles, std::string *error) {
     std::vector<vec3> vertices;
     std::vector<std::string> tokens;
     std::string line, why;
     size_t faces = 0, most = triangles->size() + maxTriangles; // (maxTriangles more, at most)
+    int capitals = 0;
     int lineNumber = 1;
     for (;; lineNumber++) {
         LineStatus status = ReadTextLine(file, lineNumber, &line, &why);
@@ -257,12 +264,17 @@ bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<M
             read = ReadFace(tokens, vertices, material, most, triangles, &why);
             faces++;
         }
+        // (A statement OBJ does not know is skipped, as the format says; 'V' and 'F' are
+        // counted, to say why a face finds too few vertices, or none is found.)
+        capitals += !tokens.empty() && (tokens[0] == "V" || tokens[0] == "F");
         if (!read)
-            return MeshFail(meshName, lineNumber, why, error);
+            return MeshFail(meshName, lineNumber, why + CapitalsHint(capitals), error);
     }
     if (faces == 0) // named at the end of the file, where the faces were looked for last
         return MeshFail(meshName, lineNumber > 1 ? lineNumber - 1 : 1,
-                        "no faces in this file ('f' statements): nothing to draw", error);
+                        "no faces in this file ('f' statements): nothing to draw" +
+                            CapitalsHint(capitals),
+                        error);
     return true;
 }
 

@@ -118,6 +118,13 @@ static void TestObjErrors() {
         {three + "f 1 2/1/1/1 3\n", 4, "bad corner '2/1/1/1'"},
         {three + "f 1.5 2 3\n", 4, "bad corner '1.5'"},
         {"", 1, "no faces"},
+        // OBJ skips what it does not know, capitals too, and the message says so
+        {"V 0 0 0\nV 1 0 0\nV 0 1 0\nF 1 2 3\n", 4,
+         "no faces in this file ('f' statements): nothing to draw (lines that begin 'V' or 'F' "
+         "were skipped: OBJ is lower case)"},
+        {"v 0 0 0\nv 1 0 0\nV 0 1 0\nf 1 2 3\n", 4,
+         "vertex index 3 is out of range (2 vertices read so far; the first is 1) (lines that "
+         "begin 'V' or 'F' were skipped"},
         {three, 3, "no faces"},
         {three + std::string("v 1 1\0 0\n", 9), 4, "NUL byte"},
     };
