@@ -103,11 +103,20 @@ static bool ParseMeshStep(const std::vector<std::string> &tokens, size_t *k, Mes
 bool ParseMeshTransform(const std::vector<std::string> &tokens, size_t first,
                         std::vector<MeshStep> *steps, std::string *error) {
     steps->clear();
+    real size = 1; // what the scale words make of a length of 1, step by step as a vertex's
     for (size_t k = first; k < tokens.size();) {
         MeshStep step;
         if (!ParseMeshStep(tokens, &k, &step, error))
             return false;
         steps->push_back(step);
+        size = step.kind == MESH_SCALE ? step.factor * size : size;
+    }
+    // Scale words that together shrink a mesh below the normal numbers would round its
+    // vertices toward 0 and make it vanish without a word (a mesh grown beyond the range of
+    // numbers is refused at its first vertex)
+    if (!(size >= std::numeric_limits<real>::min())) {
+        *error = "scale: together the scale words shrink the mesh below the range of numbers";
+        return false;
     }
     return true;
 }

@@ -280,6 +280,10 @@ static void TestMeshStatementErrors(const std::string &dir) {
         {"material m\nmesh quad.obj\n", 2, "expected a file name and a material name"},
         {"mesh quad.obj m\n", 1, "material 'm' is not defined"},
         {"material m\nmesh quad.obj m scale 0\n", 2, "mesh: scale must be > 0"},
+        // Each factor a number, together below the normal numbers: the mesh would round to 0
+        {"material m\nmesh quad.obj m scale 1e-30 scale 1e-30 rotate x 90 scale 1e-30 scale 1e-30 "
+         "scale 1e-30 scale 1e-30 scale 1e-30 scale 1e-30 scale 1e-30 scale 1e-30 scale 1e-30\n",
+         2, "mesh: scale: together the scale words shrink the mesh below the range of numbers"},
         {"material m\nmesh . m\n", 2, "not a regular file"},
         // A file name with a space is two tokens: the message says what may have happened
         {"material m\nmesh my quad.obj m\n", 2,
