@@ -198,13 +198,15 @@ inline vec3 SafeNormalize(vec3 v) {
     return length > 0 ? (1 / length) * w : w;
 }
 
-// Both at once, with one rescaling: returns SafeLength(v) and sets *unit to SafeNormalize(v).
+// Both at once: returns SafeLength(v) and sets *unit to SafeNormalize(v), the same bits. A v
+// inside the direction window is not rescaled: there no square leaves the normal numbers but one
+// far below the largest, which changes no rounded sum, so rescaling would change no bit.
 inline real LengthAndDirection(vec3 v, vec3 *unit) {
-    int k = UnitExponent(v);
-    vec3 w = ScaleByPowerOfTwo(v, k);
+    int k = SearchedAsIs(v) ? 0 : UnitExponent(v);
+    vec3 w = k == 0 ? v : ScaleByPowerOfTwo(v, k);
     real length = Length(w);
     *unit = length > 0 ? (1 / length) * w : w;
-    return ScaleByPowerOfTwo(length, -k);
+    return k == 0 ? length : ScaleByPowerOfTwo(length, -k);
 }
 
 // A vector in double, whatever `real` is: plane.cpp's first tier computes in double.
