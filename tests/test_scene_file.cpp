@@ -52,6 +52,7 @@ static const BadScene kBadScenes[] = {
     {"camera screen 0 0 0  -1 -1 0  2 0 0  0 2 0", 1, "the eye lies on the screen's plane"},
     {"camera screen 1e20 0 0  1e20 -1 -1  0 0 2  0 2 0", 1, "the eye lies on the screen's plane"},
     {"camera screen 0 0 0  -1 -1 -1  2 0 0  4 0 0", 1, "not parallel"},
+    {"camera screen 0 0 0  -1 -1 -1  2 0 0  2 1e-30 0", 1, "not parallel"}, // to rounding
     {"camera lookat 0 0 0  0 0 -1  0 1 0  180", 1, "between 0 and 180"},
     {"camera screen 0 0 0  -1 -1 -1  2 0 0  4 0 0", 1, "not parallel"},
     {"sphere 0 0 0 1 m", 1, "material 'm' is not defined"},
