@@ -15,7 +15,7 @@ PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 
 # Every scene_*.cpp but the reader is a scene built in C++ (README, "Writing a scene in C++").
 SCENES = $(filter-out scene_file,$(basename $(wildcard scene_*.cpp)))
-CORE = geometry commit build kernel packet handout watertight plane shade path camera render image text scene_file statements mesh probe views $(SCENES)
+CORE = geometry commit build kernel packet handout watertight plane shade path camera render image image_read text scene_file statements mesh probe views $(SCENES)
 TESTS = $(basename $(notdir $(wildcard tests/test_*.cpp))) exercise hard_cases hard_cases_offset robust_scenes
 
 # Object lists for one build variant: $(call objs,DIR,NAMES)

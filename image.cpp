@@ -1,4 +1,5 @@
-// image.cpp -- image files (PNG through libpng's simplified API, PPM) and comparing images.
+// image.cpp -- writing image files (PNG through libpng's simplified API, binary PPM) and comparing
+// images. Reading them (--compare) is image_read.cpp.
 //
 // An image is written to a temporary file beside the target and renamed over it only when the
 // whole file is on disk, so a failed or interrupted run never leaves a broken or half-written
@@ -232,122 +233,6 @@ bool WriteImage(const char *path, const Image *image, std::string *error) {
     if (!written)
         *error = std::string(path) + ": " + why;
     return written;
-}
-
-// A PNG, open as `file`, converted to 8-bit RGB: alpha is dropped against a black background.
-// A 16-bit PNG that does not say how it is encoded is taken as sRGB, as an 8-bit one is (libpng
-// would take it as linear light and re-encode it, 200/255 becoming 228/255), so that it compares
-// equal to the 8-bit file of the same colours.
-static bool DecodePng(FILE *file, Image *image, std::string *why) {
-    png_image png;
-    memset(&png, 0, sizeof png);
-    png.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_stdio(&png, file)) {
-        *why = png.message;
-        return false;
-    }
-    png.flags |= PNG_IMAGE_FLAG_16BIT_sRGB;
-    png.format = PNG_FORMAT_RGB;
-    image->width = (int)png.width;
-    image->height = (int)png.height;
-    image->pixels.assign(PNG_IMAGE_SIZE(png), 0);
-    if (!png_image_finish_read(&png, nullptr, image->pixels.data(), 0, nullptr)) {
-        *why = png.message;
-        png_image_free(&png);
-        return false;
-    }
-    return true;
-}
-
-bool ReadPng(const char *path, Image *image, std::string *error) {
-    FILE *file = fopen(path, "rb");
-    std::string why = file ? "" : strerror(errno);
-    bool read = file && DecodePng(file, image, &why);
-    if (file)
-        fclose(file);
-    if (!read)
-        *error = std::string(path) + ": " + why;
-    return read;
-}
-
-// The next number of a PPM: decimal digits after white space and `#` comments, ended by white
-// space (or the end of the file); -1 where there is none, or it is larger than `most`.
-static long PpmNumber(FILE *file, long most) {
-    int c = getc(file);
-    for (;;) {
-        while (c != EOF && isspace(c))
-            c = getc(file);
-        if (c != '#')
-            break;
-        while (c != EOF && c != '\n')
-            c = getc(file);
-    }
-    long n = 0;
-    if (!isdigit(c))
-        return -1;
-    for (; c != EOF && isdigit(c); c = getc(file))
-        if ((n = 10 * n + (c - '0')) > most)
-            return -1;
-    return c == EOF || isspace(c) ? n : -1; // (the one white space after a P6 header read)
-}
-
-// A PPM after its magic number (Netpbm's format): width, height and the largest sample, then
-// the samples, as bytes (P6; two bytes each, most significant first, when the largest is above
-// 255) or as decimal numbers (P3, `plain`). Samples are taken as encoded values, as a PNG's are,
-// and rescaled to 0..255 where the largest is not 255.
-static bool DecodePpm(FILE *file, bool plain, Image *image, std::string *why) {
-    const long kMostSide = 16384; // as --size and `size` allow
-    long width = PpmNumber(file, kMostSide), height = PpmNumber(file, kMostSide);
-    long most = PpmNumber(file, 65535);
-    if (width < 1 || height < 1 || most < 1) {
-        *why = "not a PPM header rt can read (a width and a height of 1 to 16384, a largest "
-               "sample of 1 to 65535)";
-        return false;
-    }
-    image->width = (int)width, image->height = (int)height;
-    size_t samples = (size_t)width * (size_t)height * 3;
-    image->pixels.assign(samples, 0);
-    bool raw = !plain && most == 255; // (the bytes are the pixels)
-    if (raw && fread(image->pixels.data(), 1, samples, file) == samples)
-        return true;
-    for (size_t i = 0; i < samples && !raw; i++) {
-        long v = plain ? PpmNumber(file, most) : getc(file);
-        if (!plain && most > 255 && v != EOF)
-            v = v << 8 | getc(file);
-        if (v < 0 || v > most) // (EOF is -1: a file cut short)
-            break;
-        image->pixels[i] = (unsigned char)((v * 255 + most / 2) / most);
-        if (i + 1 == samples)
-            return true;
-    }
-    *why = "the PPM ends before its " + std::to_string(width) + " x " + std::to_string(height) +
-           " pixels, or holds a sample that is not a number up to " + std::to_string(most);
-    return false;
-}
-
-bool ReadImage(const char *path, Image *image, std::string *error) {
-    static const unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    FILE *file = fopen(path, "rb");
-    unsigned char head[8];
-    size_t got = file ? fread(head, 1, sizeof head, file) : 0;
-    std::string why = !file || ferror(file) ? strerror(errno) : "";
-    bool read = false;
-    if (!why.empty()) { // (a directory opens, and fails when read)
-    } else if (got == 0) {
-        why = "an empty file, not an image";
-    } else if (got == sizeof head && memcmp(head, kPngSignature, sizeof head) == 0) {
-        rewind(file);
-        read = DecodePng(file, image, &why);
-    } else if (got >= 2 && head[0] == 'P' && (head[1] == '6' || head[1] == '3')) {
-        read = fseek(file, 2, SEEK_SET) == 0 && DecodePpm(file, head[1] == '3', image, &why);
-    } else {
-        why = "not a PNG or PPM image";
-    }
-    if (file)
-        fclose(file);
-    if (!read)
-        *error = std::string(path) + ": " + why;
-    return read;
 }
 
 // A heat scale for x in [0, 1]: black, red, yellow, white, each channel rising in turn.

@@ -24,18 +24,25 @@ std::string ReadFile(const std::string &path) {
 
 static bool FileExists(const std::string &path) { return std::ifstream(path).good(); }
 
-// Runs `ray ARGS` in dir with stderr captured; returns the exit status.
-int RunRay(const std::string &dir, const std::string &args, std::string *stderrText) {
+// Runs `PIPE ray ARGS` in dir with stderr captured (PIPE: nothing, or a command and `|`);
+// returns the exit status.
+static int RunRayAfter(const std::string &dir, const std::string &pipe, const std::string &args,
+                       std::string *stderrText) {
     std::string program = RayProgram();
     if (program[0] != '/') {
         char *cwd = realpath(".", nullptr);
         program = std::string(cwd) + "/" + program;
         free(cwd);
     }
-    std::string command = "cd '" + dir + "' && '" + program + "' " + args + " >out.txt 2>err.txt";
+    std::string command =
+        "cd '" + dir + "' && " + pipe + " '" + program + "' " + args + " >out.txt 2>err.txt";
     int status = system(command.c_str());
     *stderrText = ReadFile(dir + "/err.txt");
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+int RunRay(const std::string &dir, const std::string &args, std::string *stderrText) {
+    return RunRayAfter(dir, "", args, stderrText);
 }
 
 static void TestDefaultRun(const std::string &dir) {
@@ -325,6 +332,9 @@ static void TestComparePpm(const std::string &dir) {
     std::ofstream(dir + "/cut.ppm") << plain.substr(0, plain.size() - 8);
     CHECK(RunRay(dir, "--compare four.png plain.ppm", &err) == 0,
           "a plain (P3) PPM with a comment: the same picture, exit 0 (" + err + ")");
+    CHECK(RunRayAfter(dir, "cat four.png |", "--compare four.png /dev/stdin", &err) == 0 &&
+              RunRayAfter(dir, "cat plain.ppm |", "--compare four.png /dev/stdin", &err) == 0,
+          "a PNG and a PPM read from a pipe (nothing sought): the same picture (" + err + ")");
     CHECK(RunRay(dir, "--compare four.png wide.ppm", &err) == 0,
           "a P6 PPM of 16-bit samples: rescaled to the same picture, exit 0 (" + err + ")");
     CHECK(RunRay(dir, "--compare four.png fifteen.ppm --tolerance 9", &err) == 0 &&
@@ -337,7 +347,9 @@ static void TestComparePpm(const std::string &dir) {
     } bad[] = {{"cut.ppm", "cut.ppm: the PPM ends before its 4 x 4 pixels"},
                {"text.png", "text.png: not a PNG or PPM image"},
                {"nothing.png", "nothing.png: an empty file, not an image"},
-               {".", ".: Is a directory"}};
+               {".", ".: Is a directory"},
+               {"huge.ppm", "huge.ppm: the PPM ends before its 16384 x 16384 pixels"}};
+    std::ofstream(dir + "/huge.ppm") << "P6\n16384 16384\n255\n"; // (no 800 MB made for it)
     for (const auto &b : bad)
         CHECK(RunRay(dir, "--compare four.png " + std::string(b.file), &err) == 2 &&
                   err.find(b.message) != std::string::npos,
@@ -393,21 +405,24 @@ static void TestOneLineErrors(const std::string &dir) {
 }
 
 // What PrintableLine keeps and what it escapes: printable ASCII and UTF-8 characters stay; C0
-// and C1 controls, DEL, the line and paragraph separators and bytes that are not UTF-8 become
-// \xHH (a newline \n).
+// and C1 controls, DEL, the line and paragraph separators, the bidirectional controls and bytes
+// that are not UTF-8 become \xHH (a newline \n).
 static void TestPrintableLine() {
-    const char *cases[][2] = {{"plain.scene:3: fine", "plain.scene:3: fine"},
-                              {"r\xc3\xb8"
-                               "d \xe2\x82\xac \xf0\x9f\x99\x82",
-                               "r\xc3\xb8"
-                               "d \xe2\x82\xac \xf0\x9f\x99\x82"},
-                              {"a\nb\tc\rd\x1b"
-                               "e\x7f",
-                               "a\\nb\\x09c\\x0dd\\x1be\\x7f"},
-                              {"nel\xc2\x85 ls\xe2\x80\xa8 ps\xe2\x80\xa9",
-                               "nel\\xc2\\x85 ls\\xe2\\x80\\xa8 ps\\xe2\\x80\\xa9"},
-                              {"csi\x9b lone\xc3 overlong\xc0\xaf surrogate\xed\xa0\x80",
-                               "csi\\x9b lone\\xc3 overlong\\xc0\\xaf surrogate\\xed\\xa0\\x80"}};
+    const char *cases[][2] = {
+        {"plain.scene:3: fine", "plain.scene:3: fine"},
+        {"r\xc3\xb8"
+         "d \xe2\x82\xac \xf0\x9f\x99\x82",
+         "r\xc3\xb8"
+         "d \xe2\x82\xac \xf0\x9f\x99\x82"},
+        {"a\nb\tc\rd\x1b"
+         "e\x7f",
+         "a\\nb\\x09c\\x0dd\\x1be\\x7f"},
+        {"nel\xc2\x85 ls\xe2\x80\xa8 ps\xe2\x80\xa9",
+         "nel\\xc2\\x85 ls\\xe2\\x80\\xa8 ps\\xe2\\x80\\xa9"},
+        {"csi\x9b lone\xc3 overlong\xc0\xaf surrogate\xed\xa0\x80",
+         "csi\\x9b lone\\xc3 overlong\\xc0\\xaf surrogate\\xed\\xa0\\x80"},
+        // a right-to-left override (U+202E) and isolate (U+2067)
+        {"rlo\xe2\x80\xae rli\xe2\x81\xa7", "rlo\\xe2\\x80\\xae rli\\xe2\\x81\\xa7"}};
     for (auto &c : cases)
         CHECK(PrintableLine(c[0]) == c[1],
               std::string("PrintableLine: ") + c[1] + ", got " + PrintableLine(c[0]));
