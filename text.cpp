@@ -89,15 +89,18 @@ static int Utf8Character(const std::string &s, size_t i, uint32_t *point) {
     return n;
 }
 
-// Whether code point p is a control character (C0, DEL and C1) or a Unicode line or paragraph
-// separator: what a terminal acts on rather than shows.
+// Whether code point p is a control character (C0, DEL and C1), a Unicode line or paragraph
+// separator, or a bidirectional embedding, override or isolate: what a terminal acts on rather
+// than shows (the last would turn the rest of a message around on the screen).
 static bool IsControl(uint32_t p) {
-    return p < 0x20 || (p >= 0x7f && p <= 0x9f) || p == 0x2028 || p == 0x2029;
+    return p < 0x20 || (p >= 0x7f && p <= 0x9f) || p == 0x2028 || p == 0x2029 ||
+           (p >= 0x202a && p <= 0x202e) || (p >= 0x2066 && p <= 0x2069);
 }
 
-// A token as it may be shown in a message: at most 40 characters, each a printable UTF-8
-// character as written ("sphère" stays "sphère") or, for a control character or a byte that is
-// not UTF-8, '?'. (Counted in characters, so a cut never splits one.)
+// A token as it may be shown in a message: at most 40 code points, each printable one as written
+// ("sphère" stays "sphère"), and each byte of a control character (IsControl) or of bytes that
+// are not UTF-8 as '?', which counts as one. (Counted in code points, so a cut never splits the
+// bytes of one; it may part a letter from an accent written as a code point of its own.)
 std::string Shown(const std::string &token) {
     const int kMost = 40;
     std::string s;
