@@ -115,7 +115,7 @@ bool ParseMeshTransform(const std::vector<std::string> &tokens, size_t first,
     // vertices toward 0 and make it vanish without a word (a mesh grown beyond the range of
     // numbers is refused at its first vertex)
     if (!(size >= std::numeric_limits<real>::min())) {
-        *error = "scale: together the scale words shrink the mesh below the range of numbers";
+        *error = "scale: the mesh would shrink below the range of numbers";
         return false;
     }
     return true;
@@ -192,8 +192,9 @@ static long long IndexValue(const std::string &v) {
 // One corner of a face, `v`, `v/vt`, `v//vn` or `v/vt/vn`: the vertex it names, counted from 1,
 // or back from the last vertex read so far if negative (-1 is the last one). The texture and
 // normal indices are not used, but must be whole numbers, of any size, where they are written.
-static bool ReadCorner(const std::string &corner, size_t vertexCount, size_t *vertex,
-                       std::string *error) {
+// `hint` is added to the message of an index out of range (CapitalsHint).
+static bool ReadCorner(const std::string &corner, size_t vertexCount, const std::string &hint,
+                       size_t *vertex, std::string *error) {
     size_t slash = corner.find('/');
     std::string rest = slash == std::string::npos ? "" : corner.substr(slash + 1);
     size_t second = rest.find('/');
@@ -209,7 +210,7 @@ static bool ReadCorner(const std::string &corner, size_t vertexCount, size_t *ve
     long long k = index > 0 ? index - 1 : (long long)vertexCount + index;
     if (index == 0 || k < 0 || k >= (long long)vertexCount) {
         *error = "f: vertex index " + v + " is out of range (" + std::to_string(vertexCount) +
-                 " vertices read so far; the first is 1)";
+                 " vertices read so far; the first is 1)" + hint;
         return false;
     }
     *vertex = (size_t)k;
@@ -219,8 +220,8 @@ static bool ReadCorner(const std::string &corner, size_t vertexCount, size_t *ve
 // `f c1 c2 ... cn`: n - 2 triangles (c1, c2, c3), (c1, c3, c4), ..., a fan from the first corner
 // that keeps the face's winding, degenerate ones included (they are harmless: no ray hits them).
 static bool ReadFace(const std::vector<std::string> &tokens, const std::vector<vec3> &vertices,
-                     int material, size_t most, std::vector<Triangle> *triangles,
-                     std::string *error) {
+                     int material, size_t most, const std::string &hint,
+                     std::vector<Triangle> *triangles, std::string *error) {
     size_t corners = tokens.size() - 1;
     if (corners < 3) {
         *error = "f: a face needs at least 3 corners, this one has " + std::to_string(corners);
@@ -231,11 +232,11 @@ static bool ReadFace(const std::vector<std::string> &tokens, const std::vector<v
         return false;
     }
     size_t first, previous, next;
-    if (!ReadCorner(tokens[1], vertices.size(), &first, error) ||
-        !ReadCorner(tokens[2], vertices.size(), &previous, error))
+    if (!ReadCorner(tokens[1], vertices.size(), hint, &first, error) ||
+        !ReadCorner(tokens[2], vertices.size(), hint, &previous, error))
         return false;
     for (size_t k = 3; k <= corners; k++) {
-        if (!ReadCorner(tokens[k], vertices.size(), &next, error))
+        if (!ReadCorner(tokens[k], vertices.size(), hint, &next, error))
             return false;
         triangles->push_back({vertices[first], vertices[previous], vertices[next], material});
         previous = next;
@@ -266,18 +267,19 @@ bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<M
         if (lineNumber == INT_MAX) // line numbers are ints; a real mesh is far shorter
             return MeshFail(meshName, lineNumber, "too many lines", error);
         Tokenize(line, &tokens);
+        // (A statement OBJ does not know is skipped, as the format says; 'V' and 'F' are
+        // counted, to say why a face finds too few vertices, or none is found.)
+        capitals += !tokens.empty() && (tokens[0] == "V" || tokens[0] == "F");
         bool read = true;
         if (!tokens.empty() && tokens[0] == "v")
             read = ReadVertex(tokens, steps, &vertices, &why);
         if (!tokens.empty() && tokens[0] == "f") {
-            read = ReadFace(tokens, vertices, material, most, triangles, &why);
+            read =
+                ReadFace(tokens, vertices, material, most, CapitalsHint(capitals), triangles, &why);
             faces++;
         }
-        // (A statement OBJ does not know is skipped, as the format says; 'V' and 'F' are
-        // counted, to say why a face finds too few vertices, or none is found.)
-        capitals += !tokens.empty() && (tokens[0] == "V" || tokens[0] == "F");
         if (!read)
-            return MeshFail(meshName, lineNumber, why + CapitalsHint(capitals), error);
+            return MeshFail(meshName, lineNumber, why, error);
     }
     if (faces == 0) // named at the end of the file, where the faces were looked for last
         return MeshFail(meshName, lineNumber > 1 ? lineNumber - 1 : 1,

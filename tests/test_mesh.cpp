@@ -137,6 +137,12 @@ static void TestObjErrors() {
               "OBJ `" + bad.text.substr(0, 40) + "`: error at line " + std::to_string(bad.line) +
                   " mentioning \"" + bad.message + "\" (got: " + error + ")");
     }
+    // The hint about capitals goes only with the errors it explains, not with a bad corner
+    std::vector<Triangle> none;
+    std::string why;
+    ReadObjText("F 1 2 3\n" + three + "f 1 2 x\n", {}, &none, &why);
+    CHECK(why == "m.obj:5: f: bad corner 'x' (expected v, v/vt, v//vn or v/vt/vn)",
+          "a bad corner after an 'F' line: no word of capitals (got: " + why + ")");
     // The shape limit is kept inside a mesh: 2 triangles allowed, a quad and a triangle given
     std::vector<Triangle> triangles;
     std::string error;
@@ -283,7 +289,7 @@ static void TestMeshStatementErrors(const std::string &dir) {
         // Each factor a number, together below the normal numbers: the mesh would round to 0
         {"material m\nmesh quad.obj m scale 1e-30 scale 1e-30 rotate x 90 scale 1e-30 scale 1e-30 "
          "scale 1e-30 scale 1e-30 scale 1e-30 scale 1e-30 scale 1e-30 scale 1e-30 scale 1e-30\n",
-         2, "mesh: scale: together the scale words shrink the mesh below the range of numbers"},
+         2, "mesh: scale: the mesh would shrink below the range of numbers"},
         {"material m\nmesh . m\n", 2, "not a regular file"},
         // A file name with a space is two tokens: the message says what may have happened
         {"material m\nmesh my quad.obj m\n", 2,
