@@ -1,6 +1,6 @@
-// io.h -- what goes in and comes out besides the render: image files (image.cpp), lines, tokens
-// and numbers (text.cpp), OBJ meshes (mesh.cpp), probes and ray trees (probe.cpp), debug views
-// (views.cpp).
+// io.h -- what goes in and comes out besides the render: image files (image.cpp, image_read.cpp),
+// lines, tokens and numbers (text.cpp), OBJ meshes (mesh.cpp), probes and ray trees (probe.cpp),
+// debug views (views.cpp).
 #pragma once
 #include "render.h"
 
@@ -24,14 +24,6 @@ bool CheckOutputPath(const std::string &output, const std::vector<std::string> &
 // arrives; a device or FIFO is written to directly. False with *error on failure.
 bool WriteImage(const char *path, const Image *image, std::string *error);
 
-// Reads any PNG file into *image as 8-bit RGB. Returns false and sets *error on failure.
-bool ReadPng(const char *path, Image *image, std::string *error);
-
-// Reads a PNG or a PPM, binary (P6) or plain text (P3, what many a first ray tracer writes: Ray
-// Tracing in One Weekend prints one), into *image as 8-bit RGB, for --compare. False with *error
-// ("PATH: why") for a file that is neither, or is cut short.
-bool ReadImage(const char *path, Image *image, std::string *error);
-
 // How two images of the same size differ, channel values in 0..255.
 struct ImageDifference {
     double rmse;     // root mean square difference over all channels
@@ -47,6 +39,16 @@ color HeatColor(real x);
 // white for the largest possible difference. Returns false if the sizes differ.
 bool CompareImages(const Image *a, const Image *b, int tolerance, ImageDifference *difference,
                    Image *heatmap);
+
+// ---- image_read.cpp: reading images ---------------------------------------------------------
+
+// Reads any PNG file into *image as 8-bit RGB. Returns false and sets *error on failure.
+bool ReadPng(const char *path, Image *image, std::string *error);
+
+// Reads a PNG or a PPM, binary (P6) or plain text (P3, what many a first ray tracer writes: Ray
+// Tracing in One Weekend prints one), into *image as 8-bit RGB, for --compare. False with *error
+// ("PATH: why") for a file that is neither, or is cut short.
+bool ReadImage(const char *path, Image *image, std::string *error);
 
 // ---- text.cpp: lines, tokens and numbers (scene files, probe lines, the command line) --------
 
