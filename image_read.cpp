@@ -55,14 +55,6 @@ static bool DecodePng(const std::string &bytes, Image *image, std::string *why) 
     return true;
 }
 
-bool ReadPng(const char *path, Image *image, std::string *error) {
-    std::string bytes, why;
-    bool read = ReadAll(path, &bytes, &why) && DecodePng(bytes, image, &why);
-    if (!read)
-        *error = std::string(path) + ": " + why;
-    return read;
-}
-
 // A PPM's bytes and how far they have been read.
 struct PpmText {
     const std::string &bytes;

@@ -42,9 +42,6 @@ bool CompareImages(const Image *a, const Image *b, int tolerance, ImageDifferenc
 
 // ---- image_read.cpp: reading images ---------------------------------------------------------
 
-// Reads any PNG file into *image as 8-bit RGB. Returns false and sets *error on failure.
-bool ReadPng(const char *path, Image *image, std::string *error);
-
 // Reads a PNG or a PPM, binary (P6) or plain text (P3, what many a first ray tracer writes: Ray
 // Tracing in One Weekend prints one), into *image as 8-bit RGB, for --compare. False with *error
 // ("PATH: why") for a file that is neither, or is cut short.

@@ -145,7 +145,7 @@ static bool BaseImage(const std::string &dir, const BenchScene &b, const Scene *
                       Image *base) {
     std::string path = dir + "/base_" + b.name + ".png", error;
     if (sizeof(real) != sizeof(double))
-        return ReadPng(path.c_str(), base, &error);
+        return ReadImage(path.c_str(), base, &error);
     RenderSettings s = Settings(b, 1, SAMPLES_GRID);
     RayStats stats = {};
     Render(scene, &s, base, &stats);
@@ -156,7 +156,7 @@ static bool Reference(const std::string &dir, const BenchScene &b, const Scene *
                       Image *reference) {
     std::string path = dir + "/ref_" + b.name + ".png", error;
     if (sizeof(real) != sizeof(double)) // the float build reads the double build's reference
-        return ReadPng(path.c_str(), reference, &error);
+        return ReadImage(path.c_str(), reference, &error);
     RenderSettings s = Settings(b, kReferenceSpp, SAMPLES_GRID);
     RayStats stats = {};
     fprintf(stderr, "bench: %-10s reference, %d spp grid, double...\n", b.name, kReferenceSpp);
@@ -248,7 +248,7 @@ static int RawPixels(const char *png, const char *rgb) {
     Image image;
     std::string error;
     FILE *out = nullptr;
-    if (!ReadPng(png, &image, &error) || !(out = fopen(rgb, "wb")))
+    if (!ReadImage(png, &image, &error) || !(out = fopen(rgb, "wb")))
         return 2;
     bool ok = fwrite(image.pixels.data(), 1, image.pixels.size(), out) == image.pixels.size();
     return fclose(out) == 0 && ok ? 0 : 3;

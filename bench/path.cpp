@@ -73,7 +73,7 @@ static double Render(const Scene *scene, PathMethods path, SampleMethod sampling
 // if it cannot be read).
 static void Reference(const Scene *scene, const char *folder, const char *name, Image *image) {
     std::string path = std::string(folder) + "/ref_path_" + name + ".png", error;
-    if (sizeof(real) != sizeof(double) && ReadPng(path.c_str(), image, &error))
+    if (sizeof(real) != sizeof(double) && ReadImage(path.c_str(), image, &error))
         return;
     Render(scene, {SCATTER_COSINE, LIGHTS_MIS, false, 99}, SAMPLES_JITTER, kReferenceSpp, 0, image);
     if (sizeof(real) == sizeof(double) && !WriteImage(path.c_str(), image, &error))

@@ -51,7 +51,7 @@ static void TestDefaultRun(const std::string &dir) {
     CHECK(status == 0, "`ray` with no scene exits 0");
     Image image;
     std::string readError;
-    bool read = ReadPng((dir + "/reference.png").c_str(), &image, &readError);
+    bool read = ReadImage((dir + "/reference.png").c_str(), &image, &readError);
     CHECK(read && image.width == 512 && image.height == 512,
           "`ray` writes reference.png, a 512 x 512 PNG");
     // The floor pixel in the red sphere's shadow, read back from the file: 0.2 * 255 = 51
@@ -73,7 +73,7 @@ static void TestDefaultRun(const std::string &dir) {
           "--threads 1 and --threads 2 write identical bytes");
     status = RunRay(dir, "test --size 32x16 --spp 4 --depth 3", &err);
     Image test;
-    CHECK(status == 0 && ReadPng((dir + "/test.png").c_str(), &test, &readError) &&
+    CHECK(status == 0 && ReadImage((dir + "/test.png").c_str(), &test, &readError) &&
               test.width == 32 && test.height == 16,
           "`ray test --size 32x16` writes test.png, 32 wide and 16 high");
 }
@@ -240,7 +240,7 @@ static void TestSceneFilesInProgram(const std::string &dir) {
     Image image;
     std::string readError;
     CHECK(RunRay(dir, "empty.scene --size 8", &err) == 0 &&
-              ReadPng((dir + "/empty.png").c_str(), &image, &readError) && image.width == 8 &&
+              ReadImage((dir + "/empty.png").c_str(), &image, &readError) && image.width == 8 &&
               image.pixels == std::vector<uint8_t>(8 * 8 * 3, 0),
           "an empty scene file renders the black background");
 
@@ -317,7 +317,7 @@ static void TestComparePpm(const std::string &dir) {
           "--compare of rt's PNG with its PPM: the same picture, exit 0 (" + err + ")");
     Image four;
     std::string readError;
-    if (!ReadPng((dir + "/four.png").c_str(), &four, &readError))
+    if (!ReadImage((dir + "/four.png").c_str(), &four, &readError))
         return;
     std::string plain = "P3\n# a student's image\n4 4\n255\n", fifteen = "P3 4 4 15 ";
     std::string wide = "P6 4 4 65535\n";
@@ -382,7 +382,7 @@ static void TestCompareInProgram(const std::string &dir) {
     std::ofstream(dir + "/sixteen.png", std::ios::binary).write((const char *)png16, sizeof png16);
     Image sixteen;
     std::string readError;
-    bool read = ReadPng((dir + "/sixteen.png").c_str(), &sixteen, &readError);
+    bool read = ReadImage((dir + "/sixteen.png").c_str(), &sixteen, &readError);
     CHECK(read && sixteen.width == 1 && sixteen.height == 1 && sixteen.pixels[0] == 200 &&
               sixteen.pixels[1] == 100 && sixteen.pixels[2] == 50,
           "a 16-bit PNG of (200, 100, 50) x 257 reads as the 8-bit (200, 100, 50)");
