@@ -184,8 +184,12 @@ inline int UnitExponent(vec3 v) {
     return m > 0 && std::isfinite(m) ? -BinaryExponent(m) : 0;
 }
 
-// |v| for v of any finite size, by the same rescaling.
+// |v| for v of any finite size, by the same rescaling. A v inside the direction window is not
+// rescaled: there no square leaves the normal numbers but one far below the largest, which
+// changes no rounded sum, so rescaling would change no bit.
 inline real SafeLength(vec3 v) {
+    if (SearchedAsIs(v))
+        return Length(v);
     int k = UnitExponent(v);
     return ScaleByPowerOfTwo(Length(ScaleByPowerOfTwo(v, k)), -k);
 }
@@ -196,17 +200,6 @@ inline vec3 SafeNormalize(vec3 v) {
     vec3 w = ScaleByPowerOfTwo(v, UnitExponent(v));
     real length = Length(w);
     return length > 0 ? (1 / length) * w : w;
-}
-
-// Both at once: returns SafeLength(v) and sets *unit to SafeNormalize(v), the same bits. A v
-// inside the direction window is not rescaled: there no square leaves the normal numbers but one
-// far below the largest, which changes no rounded sum, so rescaling would change no bit.
-inline real LengthAndDirection(vec3 v, vec3 *unit) {
-    int k = SearchedAsIs(v) ? 0 : UnitExponent(v);
-    vec3 w = k == 0 ? v : ScaleByPowerOfTwo(v, k);
-    real length = Length(w);
-    *unit = length > 0 ? (1 / length) * w : w;
-    return k == 0 ? length : ScaleByPowerOfTwo(length, -k);
 }
 
 // A vector in double, whatever `real` is: plane.cpp's first tier computes in double.

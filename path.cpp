@@ -170,9 +170,10 @@ static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
     else
         p = SampleTriangle(&path->scene->triangles[e->index],
                            PathRandomPair(&path->sample, path->bounce, EMITTER_UV));
-    vec3 toPoint = p - hit->point, w; // (the distance and the direction rescaled: no squares)
-    real distance = LengthAndDirection(toPoint, &w);
-    real cosTheta = Dot(hit->normal, w), cosLight = std::fabs(Dot(n, w));
+    vec3 toPoint = p - hit->point;
+    real distance = SafeLength(toPoint); // (rescaled where its square would leave the numbers)
+    real cosTheta = Dot(hit->normal, toPoint) / distance;
+    real cosLight = std::fabs(Dot(n, toPoint)) / distance;
     if (!(cosTheta > 0) || !(cosLight > 0) || !Faces(path->scene, e, hit, p, n) ||
         !EmitterVisible(path, hit, e, p))
         return {0, 0, 0};
@@ -193,9 +194,8 @@ static real EmissionWeight(const Path *path, const RayHit *hit) {
     if (lights == LIGHTS_NEE)
         return 0;
     Emitter e = {hit->shape, hit->index, 0, {0, 0, 0}, {0, 0, 0}};
-    vec3 w;
-    real distance = hit->t * LengthAndDirection(path->ray.dir, &w);
-    real cosLight = std::fabs(Dot(hit->normal, w));
+    real length = SafeLength(path->ray.dir), distance = hit->t * length;
+    real cosLight = std::fabs(Dot(hit->normal, path->ray.dir)) / length;
     real pdf = EmitterPdf(path->settings->effects.emitters.size(), EmitterSize(path->scene, &e),
                           distance, cosLight);
     return PowerHeuristic(path->scatterPdf, pdf);
