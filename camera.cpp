@@ -80,9 +80,10 @@ bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen,
 bool ScreenCameraIsValid(const Camera *c, std::string *error) {
     vec3 h = SafeNormalize(c->horizontal), v = SafeNormalize(c->vertical), hxv = Cross(h, v);
     // |h x v| of the unit edges is the sine of their angle, known only to a few roundings: each
-    // unit component is within about 2 u of the exact one, and the products and the
-    // subtraction add 3 u more, so below 8 u the edges may as well be parallel (their screen has
-    // no height that rounding can tell from none: every row of pixels would be the same)
+    // unit vector's components are within about 2 u of the exact ones (4 u for the two), and
+    // the products and the subtraction add 3 u: 7 u, taken as 8. Below that the edges may as
+    // well be parallel (their screen has no height that rounding can tell from none: every row
+    // of pixels would be the same)
     vec3 normal = SafeNormalize(hxv);
     if (!(Length(hxv) > 8 * kUnitRoundoff) || !IsFinite(normal)) {
         *error = "the edges h and v must be non-zero and not parallel";

@@ -42,6 +42,12 @@ static bool DecodePng(const std::string &bytes, Image *image, std::string *why) 
         *why = png.message;
         return false;
     }
+    if (png.width > 16384 || png.height > 16384) { // (as --size and `size` allow)
+        *why = "a PNG of " + std::to_string(png.width) + " x " + std::to_string(png.height) +
+               ", larger than rt's 16384 x 16384";
+        png_image_free(&png);
+        return false;
+    }
     png.flags |= PNG_IMAGE_FLAG_16BIT_sRGB;
     png.format = PNG_FORMAT_RGB;
     image->width = (int)png.width;
@@ -113,21 +119,24 @@ static bool DecodePpm(const std::string &bytes, Image *image, std::string *why) 
                "sample of 1 to 65535)";
         return false;
     }
-    size_t samples = (size_t)width * (size_t)height * 3, left = bytes.size() - t.at;
-    *why = "the PPM ends before its " + std::to_string(width) + " x " + std::to_string(height) +
-           " pixels, or holds a sample that is not a number up to " + std::to_string(most);
-    if (plain ? left < 2 * samples - 1 : left / (most > 255 ? 2 : 1) < samples)
-        return false; // (a plain sample takes a digit and a space, but the last one)
-    image->width = (int)width, image->height = (int)height;
-    image->pixels.assign(samples, 0);
-    for (size_t i = 0; i < samples; i++) {
-        long v = PpmSample(&t, plain, most);
-        if (v < 0)
-            return false;
-        image->pixels[i] = (unsigned char)((v * 255 + most / 2) / most);
+    // The fewest bytes the samples can take: a binary sample one or two; a plain one a digit
+    // and a space, but the last
+    size_t samples = (size_t)width * (size_t)height * 3;
+    size_t fewest = plain ? 2 * samples - 1 : (most > 255 ? 2 : 1) * samples;
+    bool read = bytes.size() - t.at >= fewest;
+    if (read) {
+        image->width = (int)width, image->height = (int)height;
+        image->pixels.assign(samples, 0);
     }
-    why->clear();
-    return true;
+    for (size_t i = 0; i < samples && read; i++) {
+        long v = PpmSample(&t, plain, most);
+        if ((read = v >= 0))
+            image->pixels[i] = (unsigned char)((v * 255 + most / 2) / most);
+    }
+    if (!read)
+        *why = "the PPM ends before its " + std::to_string(width) + " x " + std::to_string(height) +
+               " pixels, or holds a sample that is not a number up to " + std::to_string(most);
+    return read;
 }
 
 // What the bytes of a file hold, by their first bytes: a PNG's signature, a PPM's magic number.
@@ -137,7 +146,8 @@ static bool DecodeImage(const std::string &bytes, Image *image, std::string *why
         *why = "an empty file, not an image";
     else if (bytes.compare(0, 8, kPngSignature, 8) == 0)
         return DecodePng(bytes, image, why);
-    else if (bytes.size() >= 2 && bytes[0] == 'P' && (bytes[1] == '6' || bytes[1] == '3'))
+    else if (bytes.size() >= 3 && bytes[0] == 'P' && (bytes[1] == '6' || bytes[1] == '3') &&
+             isspace((unsigned char)bytes[2])) // (the magic number, then white space)
         return DecodePpm(bytes, image, why);
     else
         *why = "not a PNG or PPM image";

@@ -68,12 +68,13 @@ LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::stri
 // Splits a line into tokens at spaces and tabs, up to a `#` (the rest is a comment).
 void Tokenize(const std::string &line, std::vector<std::string> *tokens);
 
-// A token as it may be shown in a message: quoted, at most 40 characters; UTF-8 text as written,
-// control characters and bytes that are not UTF-8 as ?.
+// A token as it may be shown in a message: quoted, at most 40 code points; UTF-8 text as written,
+// each byte of a control character or of bytes that are not UTF-8 as ?.
 std::string Shown(const std::string &token);
 
-// A message as one printable line: control characters (C0, DEL and C1, and the Unicode line and
-// paragraph separators) and bytes that are not UTF-8 written as escapes, \n or \xHH a byte.
+// A message as one printable line: control characters (C0, DEL and C1, the Unicode line and
+// paragraph separators, the bidirectional controls) and bytes that are not UTF-8 written as
+// escapes, \n or \xHH a byte.
 std::string PrintableLine(const std::string &text);
 
 // Whether text is UTF-8 without control characters (PrintableLine leaves it as it is): what a

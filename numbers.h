@@ -184,11 +184,11 @@ inline int UnitExponent(vec3 v) {
     return m > 0 && std::isfinite(m) ? -BinaryExponent(m) : 0;
 }
 
-// |v| for v of any finite size, by the same rescaling. A v inside the direction window is not
-// rescaled: there no square leaves the normal numbers but one far below the largest, which
-// changes no rounded sum, so rescaling would change no bit.
+// |v| for v of any finite size, by the same rescaling. Inside the direction window it is not
+// needed, and it would change no bit: the largest component's square is a normal number, so the
+// others' squares are exact multiples of their rescaled ones, or too small to round the sum.
 inline real SafeLength(vec3 v) {
-    if (SearchedAsIs(v))
+    if (WithinWindow(MaxComponent(v), kDirectionWindow))
         return Length(v);
     int k = UnitExponent(v);
     return ScaleByPowerOfTwo(Length(ScaleByPowerOfTwo(v, k)), -k);

@@ -177,7 +177,7 @@ static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
     if (!(cosTheta > 0) || !(cosLight > 0) || !Faces(path->scene, e, hit, p, n) ||
         !EmitterVisible(path, hit, e, p))
         return {0, 0, 0};
-    real pdf = EmitterPdf(emitters.size(), e->size, distance, cosLight);
+    real pdf = EmitterPdf(emitters.size(), e->sqrtArea, distance, cosLight);
     real weight = path->settings->path.lights == LIGHTS_MIS && !last // (no scattered ray follows
                       ? PowerHeuristic(pdf, ScatterPdf(path->settings->path.scatter, cosTheta))
                       : 1; // the last vertex to share the light with)
@@ -196,7 +196,7 @@ static real EmissionWeight(const Path *path, const RayHit *hit) {
     Emitter e = {hit->shape, hit->index, 0, {0, 0, 0}, {0, 0, 0}};
     real length = SafeLength(path->ray.dir), distance = hit->t * length;
     real cosLight = std::fabs(Dot(hit->normal, path->ray.dir)) / length;
-    real pdf = EmitterPdf(path->settings->effects.emitters.size(), EmitterSize(path->scene, &e),
+    real pdf = EmitterPdf(path->settings->effects.emitters.size(), EmitterSqrtArea(path->scene, &e),
                           distance, cosLight);
     return PowerHeuristic(path->scatterPdf, pdf);
 }

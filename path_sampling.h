@@ -134,12 +134,12 @@ static vec3 SampleTriangle(const Triangle *t, vec2 uv) {
 }
 
 // The density, per solid angle at the shaded point, with which next-event estimation picks a
-// point of an emitter of this size (the square root of its area, EmitterSize), seen `distance`
+// point of an emitter whose area is sqrtArea^2 (EmitterSqrtArea), seen `distance`
 // away at cosine cosLight to its normal: 1 / count for the emitter, 1 / area for the point,
-// times distance^2 / cosLight from area to solid angle. Written as (distance / size)^2, a ratio
+// times distance^2 / cosLight from area to solid angle. Written as (distance / sqrtArea)^2, a ratio
 // of lengths squared: a squared distance alone overflows from 1.3e154 (float 1.8e19) and leaves
 // the normal numbers below 1.5e-154 (float 1.1e-19), while the ratio is the same at every scale.
-static real EmitterPdf(size_t count, real size, real distance, real cosLight) {
-    real ratio = distance / size;
+static real EmitterPdf(size_t count, real sqrtArea, real distance, real cosLight) {
+    real ratio = distance / sqrtArea;
     return ratio * ratio / ((real)count * cosLight);
 }

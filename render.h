@@ -15,9 +15,9 @@
 struct Emitter {
     ShapeKind shape;
     int index;
-    real size;   // EmitterSize, once per render (every light sample divides by it)
-    vec3 normal; // a triangle's unit normal, once per render (every light sample uses it)
-    color emit;  // its material's emitted radiance
+    real sqrtArea; // EmitterSqrtArea, once per render (every light sample divides by it)
+    vec3 normal;   // a triangle's unit normal, once per render (every light sample uses it)
+    color emit;    // its material's emitted radiance
 };
 
 // Which effects a render can need, decided once per render from the scene and the settings
@@ -180,7 +180,7 @@ bool Emits(const Material *m);
 // The square root of an emitting shape's surface area (where PlanEffects finds the emitters): a
 // length, like the distances it is divided into, so that their ratio, unlike an area and a
 // squared distance, stays in the range of numbers at every scale.
-real EmitterSize(const Scene *scene, const Emitter *e);
+real EmitterSqrtArea(const Scene *scene, const Emitter *e);
 
 // ---- path.cpp: `shading path` -----------------------------------------------------------------
 

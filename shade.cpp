@@ -31,7 +31,7 @@ static vec3 ScaledEdgeCross(const Triangle *t, int *k) {
     return Cross(ScaleByPowerOfTwo(e1, *k), ScaleByPowerOfTwo(e2, *k));
 }
 
-real EmitterSize(const Scene *scene, const Emitter *e) {
+real EmitterSqrtArea(const Scene *scene, const Emitter *e) {
     if (e->shape == SHAPE_SPHERE) // area 4 pi r^2
         return std::sqrt(4 * kPi) * scene->spheres[e->index].radius;
     int k; // area |e1 x e2| / 2, from the scaled cross product: 2^-2k |n| / 2
@@ -39,17 +39,17 @@ real EmitterSize(const Scene *scene, const Emitter *e) {
     return ScaleByPowerOfTwo(std::sqrt(real(0.5) * SafeLength(n)), -k);
 }
 
-// An emitting shape, with what every light sample reads: its size, (a triangle) its unit
-// normal, and its radiance, once per render.
+// An emitting shape, with what every light sample reads: its area's square root, (a triangle) its
+// unit normal, and its radiance, once per render.
 static Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index) {
     Emitter e = {shape, index, 0, {0, 0, 0}, {0, 0, 0}};
-    e.size = EmitterSize(scene, &e);
+    e.sqrtArea = EmitterSqrtArea(scene, &e);
     if (shape == SHAPE_SPHERE) {
         e.emit = scene->materials[scene->spheres[index].material].emit;
         return e;
     }
     const Triangle *t = &scene->triangles[index];
-    int k;
+    int k; // (the scale is not needed: only the direction)
     e.normal = SafeNormalize(ScaledEdgeCross(t, &k));
     e.emit = scene->materials[t->material].emit;
     return e;
@@ -62,7 +62,7 @@ static void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters) {
     // sampled: it is left out, so no density is ever divided by 0 or infinity.)
     auto add = [scene, emitters](ShapeKind shape, int index) {
         Emitter e = MakeEmitter(scene, shape, index);
-        if (e.size > 0 && std::isfinite(e.size))
+        if (e.sqrtArea > 0 && std::isfinite(e.sqrtArea))
             emitters->push_back(e);
     };
     for (int i = 0; i < (int)scene->spheres.size(); i++)

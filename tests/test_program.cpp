@@ -306,6 +306,31 @@ static void TestProbesInProgram(const std::string &dir) {
           "--pixel outside the image: exit 2");
 }
 
+// The four bytes of n, the most significant first (PNG's order).
+static std::string BigEndian(uint32_t n) {
+    return {(char)(n >> 24), (char)(n >> 16), (char)(n >> 8), (char)n};
+}
+
+// A PNG chunk: its length, its type and data, and their CRC-32 (the PNG specification's, bit by
+// bit).
+static std::string PngChunk(const std::string &type, const std::string &data) {
+    uint32_t crc = 0xffffffffu;
+    for (unsigned char b : type + data) {
+        crc ^= b;
+        for (int k = 0; k < 8; k++)
+            crc = crc & 1 ? (crc >> 1) ^ 0xedb88320u : crc >> 1;
+    }
+    return BigEndian((uint32_t)data.size()) + type + data + BigEndian(~crc);
+}
+
+// A PNG's first chunks, claiming 30000 x 30000 pixels and holding none: IHDR (8-bit RGB) and an
+// empty IDAT.
+static std::string HugePngHeader() {
+    std::string size = BigEndian(30000) + BigEndian(30000);
+    return std::string("\x89PNG\r\n\x1a\n", 8) +
+           PngChunk("IHDR", size + std::string("\x08\x02\x00\x00\x00", 5)) + PngChunk("IDAT", "");
+}
+
 // --compare reads PPM as well as PNG: rt's own .ppm, and the plain text P3 that a student's first
 // ray tracer may print, each the same picture as rt's PNG. A file that is no image, or is cut
 // short, is exit 2 with a message saying which.
@@ -348,8 +373,12 @@ static void TestComparePpm(const std::string &dir) {
                {"text.png", "text.png: not a PNG or PPM image"},
                {"nothing.png", "nothing.png: an empty file, not an image"},
                {".", ".: Is a directory"},
-               {"huge.ppm", "huge.ppm: the PPM ends before its 16384 x 16384 pixels"}};
+               {"huge.ppm", "huge.ppm: the PPM ends before its 16384 x 16384 pixels"},
+               {"huge.png", "huge.png: a PNG of 30000 x 30000, larger than rt's 16384 x 16384"},
+               {"P36.ppm", "P36.ppm: not a PNG or PPM image"}};
+    std::ofstream(dir + "/P36.ppm") << "P36 1 1\n255 255 255\n";  // (no space after the magic)
     std::ofstream(dir + "/huge.ppm") << "P6\n16384 16384\n255\n"; // (no 800 MB made for it)
+    std::ofstream(dir + "/huge.png", std::ios::binary) << HugePngHeader(); // (nor 2.7 GB)
     for (const auto &b : bad)
         CHECK(RunRay(dir, "--compare four.png " + std::string(b.file), &err) == 2 &&
                   err.find(b.message) != std::string::npos,
