@@ -71,7 +71,9 @@ static int NextByte(PpmText *t) {
 }
 
 // The next number of a PPM: decimal digits after white space and `#` comments, ended by white
-// space (or the end of the file); -1 where there is none, or it is larger than `most`.
+// space, a comment (which Netpbm allows straight after a number: `4#wide`) or the end of the
+// file; -1 where there is none, or it is larger than `most`. A comment that ends the largest
+// sample of a P6 header also ends the header: the samples start on the next line.
 static long PpmNumber(PpmText *t, long most) {
     int c = NextByte(t);
     for (;;) {
@@ -88,6 +90,9 @@ static long PpmNumber(PpmText *t, long most) {
     for (; c != EOF && isdigit(c); c = NextByte(t))
         if ((n = 10 * n + (c - '0')) > most)
             return -1;
+    if (c == '#') // a comment to the end of its line, whose end is then the white space read
+        while (c != EOF && c != '\n')
+            c = NextByte(t);
     return c == EOF || isspace(c) ? n : -1; // (the one white space after a P6 header read)
 }
 

@@ -344,8 +344,8 @@ static void TestComparePpm(const std::string &dir) {
     std::string readError;
     if (!ReadImage((dir + "/four.png").c_str(), &four, &readError))
         return;
-    std::string plain = "P3\n# a student's image\n4 4\n255\n", fifteen = "P3 4 4 15 ";
-    std::string wide = "P6 4 4 65535\n";
+    std::string plain = "P3\n# a student's image\n4 4\n255\n", fifteen = "P3 4#wide\n4 15 ";
+    std::string wide = "P6 4 4 65535# comments end numbers, and this one the header\n";
     for (unsigned char v : four.pixels) {
         plain += std::to_string(v) + (plain.size() % 60 < 4 ? "\n" : " ");
         fifteen += std::to_string((v * 15 + 127) / 255) + " "; // rounded to 0..15
@@ -361,10 +361,14 @@ static void TestComparePpm(const std::string &dir) {
               RunRayAfter(dir, "cat plain.ppm |", "--compare four.png /dev/stdin", &err) == 0,
           "a PNG and a PPM read from a pipe (nothing sought): the same picture (" + err + ")");
     CHECK(RunRay(dir, "--compare four.png wide.ppm", &err) == 0,
-          "a P6 PPM of 16-bit samples: rescaled to the same picture, exit 0 (" + err + ")");
+          "a P6 PPM of 16-bit samples, a comment straight after its header: rescaled to the "
+          "same picture, exit 0 (" +
+              err + ")");
     CHECK(RunRay(dir, "--compare four.png fifteen.ppm --tolerance 9", &err) == 0 &&
               ReadOutput(dir).find("largest difference: 0\n") == std::string::npos,
-          "samples of 0..15, rescaled: within 255 / 15 / 2 levels, not equal (" + err + ")");
+          "samples of 0..15 (a comment straight after the width): rescaled, within 255 / 15 / 2 "
+          "levels, not equal (" +
+              err + ")");
     std::ofstream(dir + "/text.png") << "not an image\n";
     std::ofstream(dir + "/nothing.png");
     const struct {
