@@ -62,7 +62,7 @@ bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen,
         return false;
     }
     if (!(fov > 0 && fov < 180)) {
-        *error = "the field of view must be between 0 and 180 degrees";
+        *error = "the field of view must be more than 0 and less than 180 degrees";
         return false;
     }
     vec3 v = Cross(w, u);

@@ -81,6 +81,11 @@ std::string PrintableLine(const std::string &text);
 // line of a text file holds, and a line of a PNG file does not.
 bool IsPrintableText(const std::string &text);
 
+// The word of `known` (null-terminated) that `word` is a slip of the keyboard away from, for a
+// "did you mean" hint: at most one letter added, dropped, changed or two swapped (two slips for
+// words of six letters or more); "" where none is, or `word` is one of them.
+std::string NearWord(const std::string &word, const char *const *known);
+
 // Reads a number token: decimal digits with an optional sign, point and exponent, finite.
 // Returns false and sets *error for anything else (inf, nan, hexadecimal, trailing characters).
 bool ParseReal(const std::string &token, real *value, std::string *error);

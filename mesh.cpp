@@ -83,7 +83,10 @@ static bool ParseMeshStep(const std::vector<std::string> &tokens, size_t *k, Mes
         return false;
     }
     if (*k + count >= tokens.size()) {
-        *error = "'" + word + "' needs " + std::to_string(count) + " value(s)";
+        *error = word + ": expected " +
+                 (count == 1   ? "a factor (scale 2 doubles the mesh)"
+                  : count == 2 ? "an axis and an angle in degrees (rotate y 30)"
+                               : "three numbers X Y Z (translate 0 -1 -5)");
         return false;
     }
     real v[3];
@@ -150,12 +153,8 @@ vec3 TransformVertex(const std::vector<MeshStep> &steps, vec3 p) {
 // colour r g b that some exporters add) are checked as numbers and not used.
 static bool ReadVertex(const std::vector<std::string> &tokens, const std::vector<MeshStep> &steps,
                        std::vector<vec3> *vertices, std::string *error) {
-    if (tokens.size() < 4) {
-        *error = "v: expected 3 numbers x y z, found " + std::to_string(tokens.size() - 1);
-        return false;
-    }
     real v[3];
-    for (size_t k = 1; k < tokens.size(); k++) {
+    for (size_t k = 1; k < tokens.size(); k++) { // (each word first: `v 0,0,0` is one bad number)
         real value;
         if (!ParseReal(tokens[k], &value, error)) {
             *error = "v: " + *error;
@@ -163,6 +162,10 @@ static bool ReadVertex(const std::vector<std::string> &tokens, const std::vector
         }
         if (k <= 3)
             v[k - 1] = value;
+    }
+    if (tokens.size() < 4) {
+        *error = "v: expected 3 numbers x y z, found " + std::to_string(tokens.size() - 1);
+        return false;
     }
     if (vertices->size() >= kMaxMeshVertices) {
         *error = "too many vertices (rt's limit is " + std::to_string(kMaxMeshVertices) + ")";

@@ -321,7 +321,13 @@ static std::string UnknownOption(const std::string &a) {
         if (equals != std::string::npos && equals + 1 < a.size() && name == o.name && o.values == 1)
             return "unknown option '" + a + "': write '" + name + " " + a.substr(equals + 1) +
                    "' (see ray --help)";
-    return "unknown option '" + a + "' (see ray --help)";
+    std::vector<const char *> names;
+    for (const auto &o : kOptions)
+        names.push_back(o.name);
+    names.push_back(nullptr);
+    std::string near = name.size() > 2 ? NearWord(name, names.data()) : "";
+    return "unknown option '" + a + "'" + (near.empty() ? "" : ": did you mean '" + near + "'?") +
+           " (see ray --help)";
 }
 
 bool ParseOptions(int argc, char **argv, Options *opt, std::string *error) {

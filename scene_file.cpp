@@ -54,23 +54,25 @@ static bool LooksLikeObj(const std::vector<std::string> &t) {
 }
 
 // What an unknown keyword may say about the mistake: a keyword in capitals, a Wavefront OBJ file
-// given where a scene file goes, or a file that is not UTF-8 text (a PNG image).
+// given where a scene file goes, a file that is not UTF-8 text (a PNG image), or a slip of the
+// keyboard (NearWord).
 static std::string KeywordHint(const std::vector<std::string> &tokens) {
     static const char *const kKeywords[] = {"size",       "camera", "shading",  "ambient",
                                             "background", "depth",  "material", "sphere",
-                                            "triangle",   "mesh",   "light"};
+                                            "triangle",   "mesh",   "light",    nullptr};
     std::string lower = tokens[0];
     for (char &c : lower)
         c = (char)std::tolower((unsigned char)c);
-    for (const char *keyword : kKeywords)
-        if (lower == keyword)
+    for (const char *const *keyword = kKeywords; *keyword; keyword++)
+        if (lower == *keyword)
             return " (keywords are written in lower case: '" + lower + "')";
     if (LooksLikeObj(tokens))
         return " (this looks like a Wavefront OBJ mesh: a scene file draws one with `mesh FILE "
                "MATERIAL`)";
     if (!IsPrintableText(tokens[0]))
         return " (it holds bytes that are not UTF-8 text: a scene file is text, not an image)";
-    return "";
+    std::string near = NearWord(lower, kKeywords);
+    return near.empty() ? "" : " (did you mean '" + near + "'?)";
 }
 
 // The statements that set one thing for the whole scene, each at most once.

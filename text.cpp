@@ -97,6 +97,36 @@ static bool IsControl(uint32_t p) {
            (p >= 0x202a && p <= 0x202e) || (p >= 0x2066 && p <= 0x2069);
 }
 
+// The optimal string alignment distance (Damerau's four slips: a letter added, dropped or
+// changed, two neighbours swapped), by the usual table of prefixes, one row at a time.
+static size_t Slips(const std::string &a, const std::string &b) {
+    std::vector<size_t> before(b.size() + 1), row(b.size() + 1), next(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); j++)
+        row[j] = j;
+    for (size_t i = 1; i <= a.size(); i++) {
+        next[0] = i;
+        for (size_t j = 1; j <= b.size(); j++) {
+            size_t change = row[j - 1] + (a[i - 1] != b[j - 1]);
+            next[j] = std::min({row[j] + 1, next[j - 1] + 1, change});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+                next[j] = std::min(next[j], before[j - 2] + 1);
+        }
+        before.swap(row), row.swap(next);
+    }
+    return row[b.size()];
+}
+
+std::string NearWord(const std::string &word, const char *const *known) {
+    for (; *known; known++) {
+        std::string k = *known;
+        size_t most = k.size() >= 6 ? 2 : 1; // (lengths further apart: more slips than that)
+        if (word != k && word.size() <= k.size() + most && k.size() <= word.size() + most &&
+            Slips(word, k) <= most)
+            return k;
+    }
+    return "";
+}
+
 // A token as it may be shown in a message: at most 40 code points, each printable one as written
 // ("sphère" stays "sphère"), and each byte of a control character (IsControl) or of bytes that
 // are not UTF-8 as '?', which counts as one. (Counted in code points, so a cut never splits the

@@ -109,6 +109,7 @@ static void TestObjErrors() {
         {three + "f 1 2\n", 4, "at least 3 corners, this one has 2"},
         {three + "f\n", 4, "at least 3 corners"},
         {"v 1 2\n", 1, "v: expected 3 numbers"},
+        {"v 0,0,0\n", 1, "v: not a decimal number: '0,0,0'"}, // (not "found 1")
         {"v 1 2 nan\n", 1, "not a decimal number: 'nan'"},
         {"v 1 2 0x10\n", 1, "not a decimal number"},
         {"v 1 2 3e999\n", 1, "out of range"},
@@ -225,6 +226,11 @@ static void TestTransformWords() {
         Moved(words, &ok);
         CHECK(!ok, std::string("`") + words + "` is refused");
     }
+    std::vector<MeshStep> steps;
+    std::string error;
+    CHECK(!ParseMeshTransform({"rotate", "x"}, 0, &steps, &error) &&
+              error == "rotate: expected an axis and an angle in degrees (rotate y 30)",
+          "`rotate x` says what rotate expects: " + error);
 }
 
 // A vertex the transform words move beyond the range of numbers is refused: half the largest

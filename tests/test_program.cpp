@@ -87,6 +87,8 @@ struct BadRun {
 static const BadRun kBadRuns[] = {
     {"--bogus", 2, "unknown option"},
     {"--size=64", 2, "unknown option '--size=64': write '--size 64'"},
+    {"--thread 2", 2, "unknown option '--thread': did you mean '--threads'? (see ray --help)"},
+    {"--zise 8", 2, "unknown option '--zise': did you mean '--size'?"},
     {"--size", 2, "needs 1 value"},
     {"--size 0", 2, "between 1 and 16384"},
     {"--size 16385", 2, "between 1 and 16384"},
@@ -233,8 +235,11 @@ static void TestSceneFilesInProgram(const std::string &dir) {
                                           "spher 0 0 -5 1 red\n";
     CHECK(
         RunRay(dir, "typo.scene", &err) == 2 &&
-            err == "ray: typo.scene:3: unknown keyword 'spher'\n" && !FileExists(dir + "/typo.png"),
-        "a typo: exit 2, `ray: typo.scene:3: unknown keyword 'spher'`, no image (got " + err + ")");
+            err == "ray: typo.scene:3: unknown keyword 'spher' (did you mean 'sphere'?)\n" &&
+            !FileExists(dir + "/typo.png"),
+        "a typo: exit 2, `ray: typo.scene:3: unknown keyword 'spher' (did you mean 'sphere'?)`, no "
+        "image (got " +
+            err + ")");
 
     std::ofstream(dir + "/empty.scene");
     Image image;

@@ -53,13 +53,18 @@ static const BadScene kBadScenes[] = {
     {"camera screen 1e20 0 0  1e20 -1 -1  0 0 2  0 2 0", 1, "the eye lies on the screen's plane"},
     {"camera screen 0 0 0  -1 -1 -1  2 0 0  4 0 0", 1, "not parallel"},
     {"camera screen 0 0 0  -1 -1 -1  2 0 0  2 1e-30 0", 1, "not parallel"}, // to rounding
-    {"camera lookat 0 0 0  0 0 -1  0 1 0  180", 1, "between 0 and 180"},
+    {"camera lookat 0 0 0  0 0 -1  0 1 0  180", 1, "more than 0 and less than 180"},
     {"camera screen 0 0 0  -1 -1 -1  2 0 0  4 0 0", 1, "not parallel"},
     {"sphere 0 0 0 1 m", 1, "material 'm' is not defined"},
     {"sphere 0 0 0 1 m\nmaterial m", 1, "not defined"}, // used before it is defined
     {"material m\nsphere 0 0 0 0 m", 2, "radius must be > 0"},
     {"material m\nsphere 0 0 0 -1 m", 2, "radius must be > 0"},
-    {"material m\nsphere 0 0 0 m", 2, "expected 4 numbers and a material"},
+    {"material m\nsphere 0 0 0 m", 2,
+     "expected 4 numbers and a material name, found 3 numbers and then 'm'"},
+    {"material m\nsphere 0 0 -5 1 1 m", 2, "found 5 numbers and then 'm'"}, // not "extra value 'm'"
+    {"material m\nsphere 0 0 -5 1", 2, "found 4 numbers and no material name"},
+    {"material m\ntriangle 0 0 0 1 0 0 0 1 0 0 m", 2,
+     "expected 9 numbers and a material name, found 10"},
     {"material m\nsphere 0 0 0 1 m extra", 2, "extra value 'extra'"},
     {"material m\ntriangle 0 0 0 1 0 0 0 1 m", 2, "expected 9 numbers"},
     {"material m\ntriangle 0 0 0 1 0 0 0 1 z m", 2, "not a decimal number: 'z'"},
@@ -91,6 +96,9 @@ static const BadScene kBadScenes[] = {
     // an unknown keyword says what the mistake may be
     {"Sphere 0 0 -5 1 m", 1,
      "unknown keyword 'Sphere' (keywords are written in lower case: 'sphere')"},
+    {"tirangle 0 0 0 1 0 0 0 1 0 m", 1, "unknown keyword 'tirangle' (did you mean 'triangle'?)"},
+    {"backgroud 0 0 0", 1, "unknown keyword 'backgroud' (did you mean 'background'?)"},
+    {"ligth 1 1 1", 1, "unknown keyword 'ligth' (did you mean 'light'?)"},
     {"# a model\nv 0 0 0\nf 1 1 1\n", 2, "unknown keyword 'v' (this looks like a Wavefront OBJ"},
     {"o Cube\nv 0 0 0\n", 1, "unknown keyword 'o' (this looks like a Wavefront OBJ"},
     {"\x89PNG\r\n", 1, "unknown keyword '?PNG' (it holds bytes that are not UTF-8 text"},
@@ -122,7 +130,9 @@ static void TestSceneErrors() {
         {"sph\xe8re 0 0 -5 1 m\n", "s.scene:1: unknown keyword 'sph?re' (it holds bytes that are "
                                    "not UTF-8 text: a scene file is text, not an image)"},
         // UTF-8 is shown as written, 40 characters at most (not bytes: no character is cut)
-        {"sph\xc3\xa8re 0 0 -5 1 m\n", "s.scene:1: unknown keyword 'sph\xc3\xa8re'"},
+        {"sph\xc3\xa8re 0 0 -5 1 m\n",
+         "s.scene:1: unknown keyword 'sph\xc3\xa8re' (did you mean 'sphere'?)"},
+        {"spear 0 0 -5 1 m\n", "s.scene:1: unknown keyword 'spear'"}, // (two slips from sphere)
         {"\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83"
          "\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83"
          "\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83"
