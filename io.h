@@ -81,6 +81,9 @@ std::string PrintableLine(const std::string &text);
 // line of a text file holds, and a line of a PNG file does not.
 bool IsPrintableText(const std::string &text);
 
+// Whether text is UTF-8 (Unicode 15, table 3-7), control characters or not.
+bool IsUtf8(const std::string &text);
+
 // The word of `known` (null-terminated) that `word` is a slip of the keyboard away from, for a
 // "did you mean" hint: at most one letter added, dropped, changed or two swapped (two slips for
 // words of six letters or more); "" where none is, or `word` is one of them.

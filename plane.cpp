@@ -183,7 +183,12 @@ void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp) {
     // The unit normal, for shading. A sliver's n may be so small that n.n underflows: then it is
     // scaled by a power of two first, which changes no bit of n / |n|. (Within 2^+-500, n.n, at
     // most three squares of the largest component, stays inside double's normal range, 2^+-1022.)
-    setUp->hasArea = largest > 0 && std::isfinite(largest);
+    // An edge beyond the range of numbers makes a triangle unhittable whichever corner is
+    // written first: b - a and c - a overflow in n, and c - b, which n leaves out, is checked
+    // too. (Only in double: the difference of two floats is finite in double.)
+    dvec3 e3 = Sub(Widen(tri->c), Widen(tri->b));
+    setUp->hasArea = largest > 0 && std::isfinite(largest) && std::isfinite(e3.x) &&
+                     std::isfinite(e3.y) && std::isfinite(e3.z);
     if (setUp->hasArea && !(largest >= 0x1p-500 && largest <= 0x1p500))
         n = Scale(std::ldexp(1.0, -std::ilogb(largest)), n);
     double inverse = 1 / std::sqrt(DotD(n, n));

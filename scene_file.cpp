@@ -54,8 +54,8 @@ static bool LooksLikeObj(const std::vector<std::string> &t) {
 }
 
 // What an unknown keyword may say about the mistake: a keyword in capitals, a Wavefront OBJ file
-// given where a scene file goes, a file that is not UTF-8 text (a PNG image), or a slip of the
-// keyboard (NearWord).
+// given where a scene file goes, a file that is not UTF-8 text (a PNG image), an invisible
+// control character, or a slip of the keyboard (NearWord).
 static std::string KeywordHint(const std::vector<std::string> &tokens) {
     static const char *const kKeywords[] = {"size",       "camera", "shading",  "ambient",
                                             "background", "depth",  "material", "sphere",
@@ -69,8 +69,11 @@ static std::string KeywordHint(const std::vector<std::string> &tokens) {
     if (LooksLikeObj(tokens))
         return " (this looks like a Wavefront OBJ mesh: a scene file draws one with `mesh FILE "
                "MATERIAL`)";
-    if (!IsPrintableText(tokens[0]))
+    if (!IsUtf8(tokens[0]))
         return " (it holds bytes that are not UTF-8 text: a scene file is text, not an image)";
+    if (!IsPrintableText(tokens[0]))
+        return " (it holds a control character, shown as '?': an invisible character typed or "
+               "pasted into the file)";
     std::string near = NearWord(lower, kKeywords);
     return near.empty() ? "" : " (did you mean '" + near + "'?)";
 }

@@ -121,9 +121,11 @@ static const char *Unhittable(const Triangle *t) {
     if (setUp.hasArea)
         return nullptr;
     bool edgesFinite = true; // in double, as SetUpTriangle works
-    for (vec3 c : {t->b, t->c})
-        edgesFinite = edgesFinite && std::isfinite((double)c.x - t->a.x) &&
-                      std::isfinite((double)c.y - t->a.y) && std::isfinite((double)c.z - t->a.z);
+    for (auto e :
+         {std::make_pair(t->b, t->a), std::make_pair(t->c, t->a), std::make_pair(t->c, t->b)})
+        edgesFinite = edgesFinite && std::isfinite((double)e.first.x - e.second.x) &&
+                      std::isfinite((double)e.first.y - e.second.y) &&
+                      std::isfinite((double)e.first.z - e.second.z);
     return edgesFinite ? "has no area (its corners are on one line)"
                        : "has edges beyond the range of numbers";
 }

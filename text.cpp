@@ -3,7 +3,8 @@
 // Input is read a line at a time and never held whole, so a file of any size costs memory only
 // for what it describes. A line is bounded (kMaxLineLength; a comment, from `#` on, is dropped as
 // it is read and may hold anything), a NUL byte elsewhere marks a file that is not text, and a
-// UTF-8 byte-order mark (what Windows Notepad writes) at the start is skipped.
+// UTF-8 byte-order mark (what Windows Notepad writes) at the start is skipped. A line ends at LF,
+// CR LF or CR, as a text editor ends it.
 #include "io.h"
 #include "ray.h"
 
@@ -18,8 +19,14 @@ LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::stri
     int c;
     bool tooLong = false, comment = false;
     while ((c = getc(file)) != EOF && c != '\n') {
+        if (c == '\r') { // Windows' CR LF, or a CR alone (classic Mac OS), ends a line too
+            int next = getc(file);
+            if (next != '\n' && next != EOF)
+                ungetc(next, file);
+            break;
+        }
         comment = comment || c == '#'; // a comment is dropped as it is read: any length will do
-        if (comment && c != '\r')
+        if (comment)
             continue;
         if (c == 0) {
             *error = "a NUL byte: this is not a text file";
@@ -36,8 +43,6 @@ LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::stri
     }
     if (c == EOF && line->empty() && !tooLong)
         return LINE_END;
-    if (!line->empty() && line->back() == '\r') // Windows line endings
-        line->pop_back();
     if (lineNumber == 1 && line->compare(0, 3, "\xEF\xBB\xBF") == 0)
         line->erase(0, 3);
     if (tooLong) {
@@ -167,6 +172,14 @@ std::string PrintableLine(const std::string &text) {
 }
 
 bool IsPrintableText(const std::string &text) { return PrintableLine(text) == text; }
+
+bool IsUtf8(const std::string &text) {
+    uint32_t p;
+    for (size_t i = 0, n; i < text.size(); i += n)
+        if ((n = (size_t)Utf8Character(text, i, &p)) == 0)
+            return false;
+    return true;
+}
 
 // Decimal digits with an optional sign, point and exponent: -2, +0.5, 1e-3, .5, 5.
 static bool LooksDecimal(const std::string &t) {

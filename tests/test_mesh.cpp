@@ -72,6 +72,7 @@ static void TestObjFaces() {
         {"comments, blank lines and tabs",
          "# made by hand\n\n" + five + "# f 1 2 3 is not a face\n\tf 3 4 5 # a face\n", "3 4 5"},
         {"CRLF line endings", "v 1 2 -1\r\nv 2 4 -2\r\nv 3 6 -3\r\nf 1 2 3\r\n", "1 2 3"},
+        {"CR line endings (classic Mac OS)", "v 1 2 -1\rv 2 4 -2\rv 3 6 -3\rf 1 2 3\r", "1 2 3"},
         {"vt vn g o s usemtl mtllib l p and others are skipped",
          "mtllib a.mtl\no thing\ng part\n" + five +
              "vt 0.5 0.5\nvn 0 0 1\ns 1\nusemtl red\nl 1 2\np 3\ncurv 0 1 2\nf 1 2 3\n",

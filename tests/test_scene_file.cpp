@@ -93,6 +93,8 @@ static const BadScene kBadScenes[] = {
     {"light 0 0 0 1 1 1 1", 1, "extra value"},
     {"\x01\x02\xff\xfe garbage", 1, "unknown keyword '?\?\?\?'"},
     {"# ok\r\nsize 64 64\r\nbogus\r\n", 3, "unknown keyword 'bogus'"}, // CRLF counts lines too
+    {"# ok\rsize 64 64\rbogus\r", 3, "unknown keyword 'bogus'"}, // and CR alone (classic Mac OS)
+    {"material m\r\r\nsphere 0 0 -5 1 n\r\n", 3, "material 'n' is not defined"}, // CR, CR LF
     // an unknown keyword says what the mistake may be
     {"Sphere 0 0 -5 1 m", 1,
      "unknown keyword 'Sphere' (keywords are written in lower case: 'sphere')"},
@@ -133,6 +135,12 @@ static void TestSceneErrors() {
         {"sph\xc3\xa8re 0 0 -5 1 m\n",
          "s.scene:1: unknown keyword 'sph\xc3\xa8re' (did you mean 'sphere'?)"},
         {"spear 0 0 -5 1 m\n", "s.scene:1: unknown keyword 'spear'"}, // (two slips from sphere)
+        {"spher\x01 0 0 -5 1 m\n", "s.scene:1: unknown keyword 'spher?' (it holds a control "
+                                   "character, shown as '?': an invisible character typed or "
+                                   "pasted into the file)"},
+        {"sphere\xe2\x80\xae 0 0 -5 1 m\n", "s.scene:1: unknown keyword 'sphere?\?\?' (it holds a "
+                                            "control character, shown as '?': an invisible "
+                                            "character typed or pasted into the file)"},
         {"\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83"
          "\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83"
          "\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83\xe7\x90\x83"
@@ -170,6 +178,10 @@ static void TestSceneVariations() {
     if (!ok)
         return;
     CHECK(scene.width == 64 && scene.height == 32, "size 64 32 read through a tab");
+    Scene crs;
+    CHECK(ParseSceneText("material m\r\r\nsphere 0 0 -5 1 m\r\n", "c.scene", &crs, &error) &&
+              crs.materials.size() == 1 && crs.materials[0].name == "m" && crs.spheres.size() == 1,
+          "a doubled CR (an editor's slip) ends a line: material 'm', not 'm\\r' (" + error + ")");
     Scene warned;
     CHECK(ParseSceneText("material m specular 0.5 10 ambient 1 1 1 emit 1 1 1\n"
                          "triangle 0 0 0 1 1 1 2 2 2 m\ntriangle 0 0 0 1 0 0 0 1 0 m\n",
@@ -202,6 +214,24 @@ static void TestSceneVariations() {
                   tiny.warnings.size() == 1 &&
                   tiny.warnings[0].find("t.scene:2: warning: this triangle has edges beyond") == 0,
               "a triangle whose edges overflow: warned of, as such");
+    // The same, whichever corner comes first: here b - a and c - a are finite and c - b is not
+    if (sizeof(real) == sizeof(double))
+        for (const char *t : {"-1.7e308 -1 -5  1.7e308 -1 -5  0 1.7e308 -5",
+                              "0 1.7e308 -5  -1.7e308 -1 -5  1.7e308 -1 -5",
+                              "1.7e308 -1 -5  0 1.7e308 -5  -1.7e308 -1 -5"}) {
+            Scene huge;
+            bool read = ParseSceneText("material m\ntriangle " + std::string(t) + " m\n", "t.scene",
+                                       &huge, &error);
+            CommitScene(&huge, LAYOUT_AUTO);
+            RayHit hit;
+            Ray ray = {{0, 0, 0}, {0, 0, -1}};
+            CHECK(read && huge.warnings.size() == 1 &&
+                      huge.warnings[0].find("edges beyond the range") != std::string::npos &&
+                      !FindNearestHit(&huge, kRobustMethods, &ray, 0, kInfinity, &hit),
+                  std::string("triangle ") + t +
+                      ": edges beyond the range of numbers, whichever "
+                      "corner comes first: warned of, and no ray hits it");
+        }
     CHECK(
         ParseSceneText("shading phong\nmaterial m specular 0.5 10\n", "w.scene", &warned, &error) &&
             warned.warnings.empty(),
