@@ -30,7 +30,8 @@ static bool ReadAll(const char *path, std::string *bytes, std::string *why) {
     return read;
 }
 
-// A PNG converted to 8-bit RGB: alpha is dropped against a black background. A 16-bit PNG that
+// A PNG converted to 8-bit RGB: a pixel with alpha is composited over black, in linear light, as
+// libpng does it (RGBA 200 100 50 128 becomes 148 73 34). A 16-bit PNG that
 // does not say how it is encoded is taken as sRGB, as an 8-bit one is (libpng would take it as
 // linear light and re-encode it, 200/255 becoming 228/255), so that it compares equal to the
 // 8-bit file of the same colours.

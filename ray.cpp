@@ -225,36 +225,47 @@ static bool SquareSize(int width, double h, double v, int *W, int *H) {
 }
 
 // --size refused (false, *error), or the scene's own size warned of (true, *warning), when the
-// pixels of a screen camera would not be square; the message names a size that fits. A probe
-// of single rays (--ray, --rays) draws no image: nothing to check.
+// pixels of a screen camera would not be square; the message names a size that fits. Where none
+// does (a screen 2 units wide and 1e-6 high), --size is only warned of too: refusing every size
+// would leave no way to render the scene at another one. A screen whose edges are not at right
+// angles (sheared; the sine of their angle below 255/256) has parallelograms for pixels, whose
+// sides the size can still make equal. A probe of single rays (--ray, --rays) draws no image:
+// nothing to check.
 static bool CheckScreenCameraSize(const Options *opt, const Scene *scene, std::string *error,
                                   std::string *warning) {
     if (scene->camera.kind != CAMERA_SCREEN || opt->probeRay || !opt->raysFile.empty())
         return true;
-    double h = SafeLength(scene->camera.horizontal), v = SafeLength(scene->camera.vertical);
+    vec3 hv = scene->camera.horizontal, vv = scene->camera.vertical;
+    double h = SafeLength(hv), v = SafeLength(vv);
     int width = opt->width ? opt->width : scene->width;
     int height = opt->width ? (opt->height ? opt->height : opt->width) : scene->height;
     if (SquarePixels(width, height, h, v))
         return true;
+    double sine = SafeLength(Cross((real)(1 / h) * hv, (real)(1 / v) * vv));
+    const char *shape = sine < 255.0 / 256 ? "equal-sided" : "square";
+    const char *sheared =
+        sine < 255.0 / 256 ? " (the screen is sheared: they are parallelograms)" : "";
     int W, H;
-    char fits[64] = "no size up to 16384 x 16384 keeps them square";
-    if (SquareSize(width, h, v, &W, &H))
-        snprintf(fits, sizeof fits,
-                 opt->width ? "--size %dx%d keeps them square" : "`size %d %d` keeps them square",
-                 W, H);
-    char text[300];
+    bool fits = SquareSize(width, h, v, &W, &H);
+    char size[96];
+    snprintf(size, sizeof size, "no size up to 16384 x 16384 keeps them %s", shape);
+    if (fits)
+        snprintf(size, sizeof size,
+                 opt->width ? "--size %dx%d keeps them %s" : "`size %d %d` keeps them %s", W, H,
+                 shape);
+    char text[400];
     if (opt->width)
         snprintf(text, sizeof text,
-                 "--size %dx%d: the scene's screen camera is %g x %g, so its pixels would not be "
-                 "square; %s",
-                 width, height, h, v, fits);
+                 "%s--size %dx%d: the scene's screen camera is %g x %g, so its pixels would not be "
+                 "%s%s; %s",
+                 fits ? "" : "warning: ", width, height, h, v, shape, sheared, size);
     else
         snprintf(text, sizeof text,
                  "warning: the scene's screen camera is %g x %g and its image %d x %d, so its "
-                 "pixels are not square; %s",
-                 h, v, width, height, fits);
-    (opt->width ? *error : *warning) = text;
-    return !opt->width;
+                 "pixels are not %s%s; %s",
+                 h, v, width, height, shape, sheared, size);
+    (opt->width && fits ? *error : *warning) = text;
+    return !(opt->width && fits);
 }
 
 // The progress line on standard error: percentage, rays per second (every kind), time left,

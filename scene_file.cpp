@@ -78,6 +78,26 @@ static std::string KeywordHint(const std::vector<std::string> &tokens) {
     return near.empty() ? "" : " (did you mean '" + near + "'?)";
 }
 
+// `shading floor|phong|path`: one word, lower case like every word of a scene file (a word in
+// capitals is told so, as a keyword in capitals is).
+static bool ReadShading(const Statement *st, Scene *scene, std::string *error) {
+    if (st->tokens.size() > 2)
+        return Fail(st, "shading: extra value " + Shown(st->tokens[2]), error);
+    std::string word = st->tokens.size() == 2 ? st->tokens[1] : "", lower = word;
+    for (char &c : lower)
+        c = (char)std::tolower((unsigned char)c);
+    if (lower != "floor" && lower != "phong" && lower != "path")
+        return Fail(st, "shading: expected 'floor', 'phong' or 'path'", error);
+    if (word != lower)
+        return Fail(st,
+                    "shading: expected 'floor', 'phong' or 'path' (lower case: '" + lower + "')",
+                    error);
+    scene->shading = word == "phong"  ? SHADING_PHONG
+                     : word == "path" ? SHADING_PATH
+                                      : SHADING_FLOOR;
+    return true;
+}
+
 // The statements that set one thing for the whole scene, each at most once.
 static bool ReadSetting(const Statement *st, Scene *scene, Declared *declared, std::string *error) {
     const std::string &k = st->tokens[0];
@@ -106,17 +126,8 @@ static bool ReadSetting(const Statement *st, Scene *scene, Declared *declared, s
         scene->background = {v[0], v[1], v[2]};
         return CheckColor(st, "background", 1, scene->background, error);
     }
-    if (k == "shading") {
-        if (!Once(st, &declared->shading, error))
-            return false;
-        const std::string *word = st->tokens.size() == 2 ? &st->tokens[1] : nullptr;
-        if (!word || (*word != "floor" && *word != "phong" && *word != "path"))
-            return Fail(st, "shading: expected 'floor', 'phong' or 'path'", error);
-        scene->shading = *word == "phong"  ? SHADING_PHONG
-                         : *word == "path" ? SHADING_PATH
-                                           : SHADING_FLOOR;
-        return true;
-    }
+    if (k == "shading")
+        return Once(st, &declared->shading, error) && ReadShading(st, scene, error);
     return Fail(st, "unknown keyword " + Shown(k) + KeywordHint(st->tokens), error);
 }
 

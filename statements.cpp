@@ -20,7 +20,7 @@ bool Numbers(const Statement *st, size_t first, int count, size_t total, real *o
     if (st->tokens.size() < total)
         return Fail(st,
                     keyword + ": missing number(s): expected " + std::to_string(total - 1) +
-                        " values after " + keyword,
+                        (total == 2 ? " value after " : " values after ") + keyword,
                     error);
     if (st->tokens.size() > total)
         return Fail(st, keyword + ": extra value " + Shown(st->tokens[total]), error);

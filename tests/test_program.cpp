@@ -177,6 +177,21 @@ static void TestBadInput(const std::string &dir) {
               err.find("--size 1x16384 keeps them square") != std::string::npos &&
               RunRay(dir, "tall.scene --size 1x16384 -o t.png", &err) == 0,
           "a 1 x 16400 screen at --size 1x100: the size at the limit, 1x16384, named and rendered");
+    // A screen no size can fit (2 x 1e-6): --size is warned of, not refused, or no size would do
+    std::ofstream(dir + "/slit.scene") << "camera screen 0 0 0 -1 0 -1 2 0 0 0 1e-6 0\nsize 8 8\n";
+    CHECK(RunRay(dir, "slit.scene --size 16x4 -o slit.png", &err) == 0 &&
+              err.find("warning: --size 16x4: the scene's screen camera is 2 x 1e-06") !=
+                  std::string::npos &&
+              err.find("no size up to 16384 x 16384 keeps them square") != std::string::npos,
+          "a 2 x 1e-6 screen at --size 16x4: rendered, warned that no size fits (" + err + ")");
+    // A sheared screen's pixels are parallelograms: a size can make their sides equal, not square
+    std::ofstream(dir + "/sheared.scene") << "camera screen 0 0 0 -1 -1 -1 2 0 0 1 2 0\n";
+    CHECK(RunRay(dir, "sheared.scene --size 64x64 -o sh.png", &err) == 2 &&
+              err.find("not be equal-sided (the screen is sheared: they are parallelograms)") !=
+                  std::string::npos &&
+              err.find("keeps them equal-sided") != std::string::npos,
+          "a sheared screen at a size of another shape: refused, its pixels not called square (" +
+              err + ")");
     // The scene's own size is the scene's to choose: rendered, with a warning
     std::ofstream(dir + "/stretched.scene")
         << "camera screen 0 0 0 -2 -1.5 -1 4 0 0 0 3 0\nsize 512 512\n";
