@@ -311,7 +311,8 @@ static FILE *OpenMesh(const std::string &path, std::string *error) {
         return nullptr;
     }
     if (!S_ISREG(info.st_mode)) {
-        *error = path + ": not a regular file";
+        *error = path + ": not a regular file (a mesh is read from a file: not a directory, a "
+                        "device, a pipe or standard input)";
         return nullptr;
     }
     FILE *file = fopen(path.c_str(), "rb");

@@ -332,6 +332,8 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
     std::string flat = opt->view ? "" : OneColourWarning(scene);
     if (!flat.empty())
         Complain("warning: " + flat);
+    for (const std::string &inside : opt->view ? std::vector<std::string>() : InsideWarnings(scene))
+        Complain("warning: " + inside);
     Image image;
     RayStats stats = {};
     auto renderStart = std::chrono::steady_clock::now();

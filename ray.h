@@ -303,6 +303,11 @@ bool ReadSceneFile(const char *path, Scene *scene, std::string *error);
 bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
                     std::string *error);
 
+// What a render of the scene would hide without a word, for warnings: a point light inside a
+// sphere (its shadow rays end on it, so nothing outside is lit by that light), and the eye
+// inside a sphere that is not glass (the image shows its inside). One line each, no prefix.
+std::vector<std::string> InsideWarnings(const Scene *scene);
+
 // ---- scene_default.cpp, scene_test.cpp: the built-in scenes ----------------------------------
 
 void BuildDefaultScene(Scene *scene); // the assignment scene (the handout's scene;

@@ -225,3 +225,42 @@ bool ReadSceneFile(const char *path, Scene *scene, std::string *error) {
     fclose(file);
     return read;
 }
+
+// The first sphere that holds point p strictly inside, or null. (SafeLength: a scene of 1e200
+// units has the same answer as at scale 1.)
+static const Sphere *SphereAround(const Scene *scene, vec3 p) {
+    for (const Sphere &s : scene->spheres)
+        if (SafeLength(p - s.center) < s.radius)
+            return &s;
+    return nullptr;
+}
+
+static std::string Where(const char *what, vec3 p) {
+    char text[160];
+    snprintf(text, sizeof text, "%s (%g %g %g)", what, (double)p.x, (double)p.y, (double)p.z);
+    return text;
+}
+static std::string Described(const Sphere *s) {
+    char radius[40];
+    snprintf(radius, sizeof radius, " of radius %g", (double)s->radius);
+    return Where("the sphere at", s->center) + radius;
+}
+
+std::vector<std::string> InsideWarnings(const Scene *scene) {
+    std::vector<std::string> warnings;
+    for (const Light &light : scene->lights)
+        if (const Sphere *s = SphereAround(scene, light.position))
+            warnings.push_back(Where("the light at", light.position) + " is inside " +
+                               Described(s) +
+                               ": its shadow rays end on that sphere, so nothing outside it is lit "
+                               "by that light");
+    const Camera *c = &scene->camera;
+    vec3 eye = c->kind == CAMERA_PERSPECTIVE ? c->perspective.eye
+               : c->kind == CAMERA_LOOKAT    ? c->from
+                                             : c->eye;
+    const Sphere *s = SphereAround(scene, eye);
+    if (s && !(scene->materials[s->material].ior > 0))
+        warnings.push_back(Where("the eye at", eye) + " is inside " + Described(s) +
+                           ": the image shows that sphere from inside");
+    return warnings;
+}

@@ -177,6 +177,25 @@ static void TestBadInput(const std::string &dir) {
               err.find("--size 1x16384 keeps them square") != std::string::npos &&
               RunRay(dir, "tall.scene --size 1x16384 -o t.png", &err) == 0,
           "a 1 x 16400 screen at --size 1x100: the size at the limit, 1x16384, named and rendered");
+    // What a render would hide without a word: a light inside a sphere lights nothing outside
+    // it, and an eye inside a (not glass) sphere sees only its inside. Probes say nothing.
+    std::ofstream(dir + "/inside.scene") << "size 8 8\nmaterial m\nmaterial g glass 1.5\n"
+                                            "sphere 0 0 0 2 m\nlight 0 0 -5\nsphere 0 0 -5 1 m\n"
+                                            "light 9 0 -5\nsphere 9 0 -5 1 g\n";
+    CHECK(RunRay(dir, "inside.scene -o in.png", &err) == 0 &&
+              err == "ray: warning: the light at (0 0 -5) is inside the sphere at (0 0 -5) of "
+                     "radius 1: its shadow rays end on that sphere, so nothing outside it is lit "
+                     "by that light\nray: warning: the light at (9 0 -5) is inside the sphere at "
+                     "(9 0 -5) of radius 1: its shadow rays end on that sphere, so nothing outside "
+                     "it is lit by that light\nray: warning: the eye at (0 0 0) is inside the "
+                     "sphere at (0 0 0) of radius 2: the image shows that sphere from inside\n",
+          "a light inside a sphere, even glass, and the eye inside one: warned of (" + err + ")");
+    std::ofstream(dir + "/glass.scene") << "size 8 8\nmaterial g glass 1.5\nsphere 0 0 0 2 g\n"
+                                           "light 0 5 0\n";
+    CHECK(RunRay(dir, "glass.scene -o gl.png", &err) == 0 && err.empty() &&
+              RunRay(dir, "inside.scene --ray 0 0 0 0 0 -1", &err) == 0 && err.empty(),
+          "the eye inside a glass sphere (it sees through it), and a probe: no warning (" + err +
+              ")");
     // A screen no size can fit (2 x 1e-6): --size is warned of, not refused, or no size would do
     std::ofstream(dir + "/slit.scene") << "camera screen 0 0 0 -1 0 -1 2 0 0 0 1e-6 0\nsize 8 8\n";
     CHECK(RunRay(dir, "slit.scene --size 16x4 -o slit.png", &err) == 0 &&
