@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -18,9 +19,14 @@ LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::stri
     line->clear();
     int c;
     bool tooLong = false, comment = false;
-    while ((c = getc(file)) != EOF && c != '\n') {
+    // (Bytes are gathered a bufferful at a time, and read with getc_unlocked: the file is this
+    // thread's alone. A lock and an append for every byte were a third of the time of reading a
+    // large mesh.)
+    char kept[256];
+    size_t waiting = 0, length = 0; // bytes in `kept`; bytes of the line so far
+    while ((c = getc_unlocked(file)) != EOF && c != '\n') {
         if (c == '\r') { // Windows' CR LF, or a CR alone (classic Mac OS), ends a line too
-            int next = getc(file);
+            int next = getc_unlocked(file);
             if (next != '\n' && next != EOF)
                 ungetc(next, file);
             break;
@@ -32,11 +38,14 @@ LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::stri
             *error = "a NUL byte: this is not a text file";
             return LINE_BAD;
         }
-        if (line->size() < kMaxLineLength)
-            *line += (char)c;
-        else
-            tooLong = true; // read on to the end of the line, keeping nothing
+        tooLong = tooLong || length == kMaxLineLength; // then read on, keeping nothing
+        if (tooLong)
+            continue;
+        if (waiting == sizeof kept)
+            line->append(kept, waiting), waiting = 0;
+        kept[waiting++] = (char)c, length++;
     }
+    line->append(kept, waiting);
     if (ferror(file)) {
         *error = "read error";
         return LINE_BAD;
@@ -206,12 +215,31 @@ static bool LooksDecimal(const std::string &t) {
     return k == t.size();
 }
 
+// Whether a decimal number has a digit other than 0 before its exponent.
+static bool NonzeroDigits(const std::string &t) {
+    for (char c : t) {
+        if (c == 'e' || c == 'E')
+            return false;
+        if (c >= '1' && c <= '9')
+            return true;
+    }
+    return false;
+}
+
 bool ParseReal(const std::string &token, real *value, std::string *error) {
     if (!LooksDecimal(token)) {
         *error = "not a decimal number: " + Shown(token);
         return false;
     }
-    double v = strtod(token.c_str(), nullptr);
+    // The nearest double, as strtod gives it, by std::from_chars (which takes no '+', and is
+    // several times faster: a large mesh is mostly numbers). Where from_chars does not read the
+    // whole token, or finds it out of range, strtod reads it, and tells too large (infinity)
+    // from too small (0) as before.
+    double v;
+    const char *first = token.data() + (token[0] == '+'), *last = token.data() + token.size();
+    std::from_chars_result read = std::from_chars(first, last, v);
+    if (read.ec != std::errc() || read.ptr != last)
+        v = strtod(token.c_str(), nullptr);
     if (!std::isfinite(v) || !std::isfinite((real)v)) {
         *error = "number out of range: " + Shown(token);
         return false;
@@ -219,9 +247,7 @@ bool ParseReal(const std::string &token, real *value, std::string *error) {
     // A number too small to be anything but 0 (1e-400; in float 1e-50) is refused as a number
     // too large is: read as 0, a radius of 1e-50 would be refused as "not > 0", and a direction
     // as "zero", for a number that is neither. (A nonzero digit before the exponent: not 0.)
-    size_t exponent = token.find_first_of("eE");
-    bool nonzero = token.substr(0, exponent).find_first_of("123456789") != std::string::npos;
-    if ((real)v == 0 && nonzero) {
+    if ((real)v == 0 && NonzeroDigits(token)) {
         *error = "number out of range (too small, it would be 0): " + Shown(token);
         return false;
     }
