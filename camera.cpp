@@ -114,3 +114,40 @@ void PlanRender(const Scene *scene, RenderSettings *settings) {
                        &unused);
     settings->camera.fromScreen = settings->methods.cameraRay == CAMERA_RAY_SLIDES;
 }
+
+// ---- a screen camera's shape ----------------------------------------------------------------
+
+// A screen camera's edges fix its shape, so the image must keep it, or the pixels would not be
+// square and spheres would come out as eggs: W : H must be |h| : |v| to within 1 part in 256
+// (less than a pixel's width across 256 pixels). A perspective or lookat camera adapts its
+// screen to the image instead.
+bool SquarePixels(double W, double H, double h, double v) {
+    return std::fabs(W * v - H * h) <= (W * v + H * h) / 512;
+}
+
+// A size that keeps the screen's pixels square: `width` wide, or, when no whole height fits that
+// width (a 3 x 1 screen 100 pixels wide would need 33.3 rows), the nearest width that has one
+// (99, with 33 rows; 33 x 24 asked of a 4 x 3 screen gives 32 x 24). A width's height is the
+// nearest whole one, or the limit where that is beyond it (within 1 part in 256, the limit
+// itself may fit). False when no size within the limit (16384) fits.
+bool SquareSize(int width, double h, double v, int *W, int *H) {
+    const int kMaxSide = 16384; // as --size and `size` allow
+    for (int away = 0; away < kMaxSide; away++)
+        for (int w : {width - away, width + away}) { // (the narrower first)
+            double exact = w * v / h;
+            int height = exact >= kMaxSide ? kMaxSide : std::max(1, (int)std::lround(exact));
+            if (w >= 1 && w <= kMaxSide && SquarePixels(w, height, h, v)) {
+                *W = w, *H = height;
+                return true;
+            }
+        }
+    return false;
+}
+
+// The cosine of the edges' angle above 1/256, the tolerance SquarePixels allows the proportions:
+// a pixel's corner more than about a quarter of a degree from a right angle. (SafeNormalize:
+// edges of 1e-310 or 1e300 have the angle they have at 1.)
+bool ScreenIsSheared(const Camera *camera) {
+    vec3 h = SafeNormalize(camera->horizontal), v = SafeNormalize(camera->vertical);
+    return std::fabs(Dot(h, v)) > real(1) / 256;
+}

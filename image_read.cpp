@@ -82,7 +82,7 @@ static long PpmNumber(PpmText *t, long most) {
             c = NextByte(t);
         if (c != '#')
             break;
-        while (c != EOF && c != '\n')
+        while (c != EOF && c != '\n' && c != '\r') // (a comment ends at either, as in Netpbm)
             c = NextByte(t);
     }
     long n = 0;
@@ -92,7 +92,7 @@ static long PpmNumber(PpmText *t, long most) {
         if ((n = 10 * n + (c - '0')) > most)
             return -1;
     if (c == '#') // a comment to the end of its line, whose end is then the white space read
-        while (c != EOF && c != '\n')
+        while (c != EOF && c != '\n' && c != '\r')
             c = NextByte(t);
     return c == EOF || isspace(c) ? n : -1; // (the one white space after a P6 header read)
 }

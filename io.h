@@ -55,7 +55,7 @@ bool ReadImage(const char *path, Image *image, std::string *error);
 const size_t kMaxLineLength = 65536;
 
 enum LineStatus {
-    LINE_READ,     // *line holds the next line, without its \n or \r\n
+    LINE_READ,     // *line holds the next line, without its ending (\n, \r\n or \r alone)
     LINE_END,      // no more lines
     LINE_TOO_LONG, // the line was longer than kMaxLineLength (and has been skipped)
     LINE_BAD       // a NUL byte (not a text file) or a read error: stop reading
@@ -84,10 +84,15 @@ bool IsPrintableText(const std::string &text);
 // Whether text is UTF-8 (Unicode 15, table 3-7), control characters or not.
 bool IsUtf8(const std::string &text);
 
-// The word of `known` (null-terminated) that `word` is a slip of the keyboard away from, for a
-// "did you mean" hint: at most one letter added, dropped, changed or two swapped (two slips for
-// words of six letters or more); "" where none is, or `word` is one of them.
-std::string NearWord(const std::string &word, const char *const *known);
+// Where in `known` (null-terminated) is the word that `word` is the fewest slips of the keyboard
+// away from, for a "did you mean" hint: a slip is a letter added, dropped or changed, or two
+// swapped, and a word may be one slip away (two for words of six letters or more). -1 where
+// none is, `word` is one of them, or it has fewer than three letters.
+int NearWord(const std::string &word, const char *const *known);
+
+// Whether a token is written as ParseReal reads numbers, whatever its size: an optional sign,
+// decimal digits with an optional point, an optional exponent (-2, +0.5, 1e-3, .5, 5., 1e999).
+bool LooksDecimal(const std::string &token);
 
 // Reads a number token: decimal digits with an optional sign, point and exponent, finite.
 // Returns false and sets *error for anything else (inf, nan, hexadecimal, trailing characters).

@@ -4,6 +4,7 @@
 // checks of what goes together. Nothing here prints; main does (ray.cpp).
 #include "options.h"
 
+#include <cstring>
 #include <vector>
 
 const char *kVersion = "rt 0.2.0";
@@ -313,20 +314,29 @@ static bool CheckCombinations(const Options *opt, const std::string &seen, std::
     return CheckUnused(opt, seen, error);
 }
 
-// The message for an option rt does not know. `--size=64`, the GNU way, is told how rt writes it.
+// The message for an option rt does not know. `--size=64`, the GNU way, is told how rt writes it,
+// and a slip of the keyboard the option it may be (NearWord, the dashes not counted).
 static std::string UnknownOption(const std::string &a) {
     size_t equals = a.find('=');
     std::string name = a.substr(0, equals);
     for (const auto &o : kOptions)
-        if (equals != std::string::npos && equals + 1 < a.size() && name == o.name && o.values == 1)
-            return "unknown option '" + a + "': write '" + name + " " + a.substr(equals + 1) +
-                   "' (see ray --help)";
-    std::vector<const char *> names;
+        if (equals != std::string::npos && name == o.name)
+            return "unknown option '" + a + "': write " +
+                   (o.values == 0 ? "'" + name + "' alone: it takes no value"
+                    : o.values == 1 && equals + 1 < a.size()
+                        ? "'" + name + " " + a.substr(equals + 1) + "'"
+                        : "'" + name + "' and then " +
+                              (o.values > 1 ? "its values, each" : "its value,") +
+                              " a word of its own") +
+                   " (see ray --help)";
+    std::vector<const char *> bare; // the names without their dashes
     for (const auto &o : kOptions)
-        names.push_back(o.name);
-    names.push_back(nullptr);
-    std::string near = name.size() > 2 ? NearWord(name, names.data()) : "";
-    return "unknown option '" + a + "'" + (near.empty() ? "" : ": did you mean '" + near + "'?") +
+        bare.push_back(o.name + strspn(o.name, "-"));
+    bare.push_back(nullptr);
+    size_t dashes = strspn(name.c_str(), "-");
+    int near = dashes > 0 ? NearWord(name.substr(dashes), bare.data()) : -1;
+    return "unknown option '" + a + "'" +
+           (near < 0 ? "" : ": did you mean '" + std::string(kOptions[near].name) + "'?") +
            " (see ray --help)";
 }
 

@@ -153,6 +153,14 @@ RT_COLD static PlaneT WidePlaneT(const PlaneProblem *p) {
 // does. Inside 2^+-64 no scaling is needed: n stays within about 2^+-130 of 1 (a sliver aside),
 // so n.(a - o) overflows only where a - o is within that factor of overflowing itself, and the
 // scene's own numbers would fail first. ldexp scales by any power, in exact steps.
+// An edge beyond the range of numbers makes a triangle unhittable whichever corner is written
+// first: b - a and c - a overflow in n, and c - b, which n leaves out, is checked here. (Only
+// in double: the difference of two floats is finite in double.)
+static bool ThirdEdgeFinite(const Triangle *tri) {
+    dvec3 e3 = Sub(Widen(tri->c), Widen(tri->b));
+    return std::isfinite(e3.x) && std::isfinite(e3.y) && std::isfinite(e3.z);
+}
+
 void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp) {
     setUp->box = TriangleBox(tri);
     dvec3 a = Widen(tri->a), e1 = Sub(Widen(tri->b), a), e2 = Sub(Widen(tri->c), a);
@@ -183,12 +191,7 @@ void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp) {
     // The unit normal, for shading. A sliver's n may be so small that n.n underflows: then it is
     // scaled by a power of two first, which changes no bit of n / |n|. (Within 2^+-500, n.n, at
     // most three squares of the largest component, stays inside double's normal range, 2^+-1022.)
-    // An edge beyond the range of numbers makes a triangle unhittable whichever corner is
-    // written first: b - a and c - a overflow in n, and c - b, which n leaves out, is checked
-    // too. (Only in double: the difference of two floats is finite in double.)
-    dvec3 e3 = Sub(Widen(tri->c), Widen(tri->b));
-    setUp->hasArea = largest > 0 && std::isfinite(largest) && std::isfinite(e3.x) &&
-                     std::isfinite(e3.y) && std::isfinite(e3.z);
+    setUp->hasArea = largest > 0 && std::isfinite(largest) && ThirdEdgeFinite(tri);
     if (setUp->hasArea && !(largest >= 0x1p-500 && largest <= 0x1p500))
         n = Scale(std::ldexp(1.0, -std::ilogb(largest)), n);
     double inverse = 1 / std::sqrt(DotD(n, n));

@@ -197,54 +197,25 @@ static int Probe(const Options *opt, const Scene *scene, const RenderSettings *s
     return status;
 }
 
-// A screen camera's edges fix its shape, so the image must keep it, or the pixels would not be
-// square and spheres would come out as eggs: W : H must be |h| : |v| to within 1 part in 256
-// (less than a pixel's width across 256 pixels). A perspective or lookat camera adapts its
-// screen to the image instead.
-static bool SquarePixels(double W, double H, double h, double v) {
-    return std::fabs(W * v - H * h) <= (W * v + H * h) / 512;
-}
-
-// A size that keeps the screen's pixels square: `width` wide, or, when no whole height fits that
-// width (a 3 x 1 screen 100 pixels wide would need 33.3 rows), the nearest width that has one
-// (99, with 33 rows; 33 x 24 asked of a 4 x 3 screen gives 32 x 24). A width's height is the
-// nearest whole one, or the limit where that is beyond it (within 1 part in 256, the limit
-// itself may fit). False when no size within the limit (16384) fits.
-static bool SquareSize(int width, double h, double v, int *W, int *H) {
-    const int kMaxSide = 16384; // as --size and `size` allow
-    for (int away = 0; away < kMaxSide; away++)
-        for (int w : {width - away, width + away}) { // (the narrower first)
-            double exact = w * v / h;
-            int height = exact >= kMaxSide ? kMaxSide : std::max(1, (int)std::lround(exact));
-            if (w >= 1 && w <= kMaxSide && SquarePixels(w, height, h, v)) {
-                *W = w, *H = height;
-                return true;
-            }
-        }
-    return false;
-}
-
 // --size refused (false, *error), or the scene's own size warned of (true, *warning), when the
 // pixels of a screen camera would not be square; the message names a size that fits. Where none
 // does (a screen 2 units wide and 1e-6 high), --size is only warned of too: refusing every size
 // would leave no way to render the scene at another one. A screen whose edges are not at right
-// angles (sheared; the sine of their angle below 255/256) has parallelograms for pixels, whose
+// angles (ScreenIsSheared) has parallelograms for pixels, whose
 // sides the size can still make equal. A probe of single rays (--ray, --rays) draws no image:
 // nothing to check.
 static bool CheckScreenCameraSize(const Options *opt, const Scene *scene, std::string *error,
                                   std::string *warning) {
     if (scene->camera.kind != CAMERA_SCREEN || opt->probeRay || !opt->raysFile.empty())
         return true;
-    vec3 hv = scene->camera.horizontal, vv = scene->camera.vertical;
-    double h = SafeLength(hv), v = SafeLength(vv);
+    double h = SafeLength(scene->camera.horizontal), v = SafeLength(scene->camera.vertical);
     int width = opt->width ? opt->width : scene->width;
     int height = opt->width ? (opt->height ? opt->height : opt->width) : scene->height;
     if (SquarePixels(width, height, h, v))
         return true;
-    double sine = SafeLength(Cross((real)(1 / h) * hv, (real)(1 / v) * vv));
-    const char *shape = sine < 255.0 / 256 ? "equal-sided" : "square";
-    const char *sheared =
-        sine < 255.0 / 256 ? " (the screen is sheared: they are parallelograms)" : "";
+    bool skew = ScreenIsSheared(&scene->camera);
+    const char *shape = skew ? "equal-sided" : "square";
+    const char *sheared = skew ? " (the screen is sheared: they are parallelograms)" : "";
     int W, H;
     bool fits = SquareSize(width, h, v, &W, &H);
     char size[96];
@@ -332,7 +303,9 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
     std::string flat = opt->view ? "" : OneColourWarning(scene);
     if (!flat.empty())
         Complain("warning: " + flat);
-    for (const std::string &inside : opt->view ? std::vector<std::string>() : InsideWarnings(scene))
+    bool fromEye = settings->methods.cameraRay != CAMERA_RAY_SLIDES; // (else from the screen)
+    for (const std::string &inside :
+         opt->view ? std::vector<std::string>() : InsideWarnings(scene, fromEye))
         Complain("warning: " + inside);
     Image image;
     RayStats stats = {};

@@ -228,6 +228,19 @@ bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen,
 // and the eye off the screen's plane (else every ray lies in that plane). False with *error.
 bool ScreenCameraIsValid(const Camera *camera, std::string *error);
 
+// A screen camera's edges fix its shape, so its image must keep it, or the pixels would not be
+// square: whether a W x H image does, for edges of lengths h and v (to within 1 part in 256).
+bool SquarePixels(double W, double H, double h, double v);
+
+// The size nearest `width` wide whose pixels are square for edges h and v (SquarePixels); false
+// if none up to 16384 x 16384 is.
+bool SquareSize(int width, double h, double v, int *W, int *H);
+
+// Whether a screen camera's edges are not at right angles, to the same 1 part in 256 (the cosine
+// of their angle): its pixels are then parallelograms, which a size can make equal-sided but not
+// square.
+bool ScreenIsSheared(const Camera *camera);
+
 // ---- geometry.cpp: ray/shape intersection ----------------------------------------------------
 
 // Writes the fields every shape fills the same way; `outwardNormal` must be unit length.
@@ -304,9 +317,10 @@ bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
                     std::string *error);
 
 // What a render of the scene would hide without a word, for warnings: a point light inside a
-// sphere (its shadow rays end on it, so nothing outside is lit by that light), and the eye
-// inside a sphere that is not glass (the image shows its inside). One line each, no prefix.
-std::vector<std::string> InsideWarnings(const Scene *scene);
+// sphere (its shadow rays end on it, so nothing outside is lit by that light), and, where the
+// eye rays start at the eye (`fromEye`: not the slides' rays, which start on the screen), the
+// eye inside a sphere that is not glass (the image shows its inside). One line each, no prefix.
+std::vector<std::string> InsideWarnings(const Scene *scene, bool fromEye);
 
 // ---- scene_default.cpp, scene_test.cpp: the built-in scenes ----------------------------------
 

@@ -74,8 +74,8 @@ static std::string KeywordHint(const std::vector<std::string> &tokens) {
     if (!IsPrintableText(tokens[0]))
         return " (it holds a control character, shown as '?': an invisible character typed or "
                "pasted into the file)";
-    std::string near = NearWord(lower, kKeywords);
-    return near.empty() ? "" : " (did you mean '" + near + "'?)";
+    int near = NearWord(lower, kKeywords);
+    return near < 0 ? "" : " (did you mean '" + std::string(kKeywords[near]) + "'?)";
 }
 
 // `shading floor|phong|path`: one word, lower case like every word of a scene file (a word in
@@ -226,11 +226,12 @@ bool ReadSceneFile(const char *path, Scene *scene, std::string *error) {
     return read;
 }
 
-// The first sphere that holds point p strictly inside, or null. (SafeLength: a scene of 1e200
-// units has the same answer as at scale 1.)
-static const Sphere *SphereAround(const Scene *scene, vec3 p) {
+// The first sphere that holds point p strictly inside, glass ones too or not, or null.
+// (SafeLength: a scene of 1e200 units has the same answer as at scale 1.)
+static const Sphere *SphereAround(const Scene *scene, vec3 p, bool glass) {
     for (const Sphere &s : scene->spheres)
-        if (SafeLength(p - s.center) < s.radius)
+        if (SafeLength(p - s.center) < s.radius &&
+            (glass || !(scene->materials[s.material].ior > 0)))
             return &s;
     return nullptr;
 }
@@ -246,10 +247,10 @@ static std::string Described(const Sphere *s) {
     return Where("the sphere at", s->center) + radius;
 }
 
-std::vector<std::string> InsideWarnings(const Scene *scene) {
+std::vector<std::string> InsideWarnings(const Scene *scene, bool fromEye) {
     std::vector<std::string> warnings;
     for (const Light &light : scene->lights)
-        if (const Sphere *s = SphereAround(scene, light.position))
+        if (const Sphere *s = SphereAround(scene, light.position, true))
             warnings.push_back(Where("the light at", light.position) + " is inside " +
                                Described(s) +
                                ": its shadow rays end on that sphere, so nothing outside it is lit "
@@ -258,8 +259,8 @@ std::vector<std::string> InsideWarnings(const Scene *scene) {
     vec3 eye = c->kind == CAMERA_PERSPECTIVE ? c->perspective.eye
                : c->kind == CAMERA_LOOKAT    ? c->from
                                              : c->eye;
-    const Sphere *s = SphereAround(scene, eye);
-    if (s && !(scene->materials[s->material].ior > 0))
+    const Sphere *s = fromEye ? SphereAround(scene, eye, false) : nullptr;
+    if (s)
         warnings.push_back(Where("the eye at", eye) + " is inside " + Described(s) +
                            ": the image shows that sphere from inside");
     return warnings;

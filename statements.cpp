@@ -68,30 +68,32 @@ static bool FindMaterial(const Statement *st, const Scene *scene, size_t index, 
         }
     }
     return Fail(st,
-                st->tokens[0] + ": material " + Shown(name) + " is not defined (define it above)",
+                st->tokens[0] + ": material " + Shown(name) +
+                    (LooksDecimal(name) ? " is not defined (a number where the material's name "
+                                          "goes: is the name left out?)"
+                                        : " is not defined (define it above)"),
                 error);
 }
 
 // A shape statement holds `numbers` numbers and then the name of its material. Where it holds
 // another count, the message counts what it found: with one number too many, the word after the
 // numbers is still the material's name, and calling that name the extra value would blame the
-// wrong word.
+// wrong word. (Numbers are counted as written, in range or not: Numbers judges their range.)
 static bool ShapeArity(const Statement *st, size_t numbers, std::string *error) {
     const std::vector<std::string> &t = st->tokens;
     size_t given = t.size() - 1, found = 0; // found: the numbers before the first other word
-    real ignored;
-    std::string why;
-    while (found < given && ParseReal(t[found + 1], &ignored, &why))
+    while (found < given && LooksDecimal(t[found + 1]))
         found++;
     if (given == numbers + 1) // the count is right: Numbers and FindMaterial judge the words
         return true;
     if (found == numbers && given > numbers + 1)
         return Fail(st, t[0] + ": extra value " + Shown(t[numbers + 2]), error);
+    if (found + 1 < given) // a word that is no number where a number goes: that is the mistake
+        return Fail(st, t[0] + ": not a decimal number: " + Shown(t[found + 1]), error);
     std::string count = std::to_string(found) + (found == 1 ? " number" : " numbers");
-    std::string got = given == 0           ? "nothing"
-                      : found == given     ? count + " and no material name"
-                      : found + 1 == given ? count + " and then " + Shown(t[given])
-                                           : std::to_string(given) + " values";
+    std::string got = given == 0       ? "nothing"
+                      : found == given ? count + " and no material name"
+                                       : count + " and then " + Shown(t[given]);
     return Fail(st,
                 t[0] + ": expected " + std::to_string(numbers) +
                     " numbers and a material name, found " + got,

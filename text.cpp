@@ -1,10 +1,10 @@
 // text.cpp -- reading text input: lines, tokens and numbers, for scene files and probes alike.
 //
 // Input is read a line at a time and never held whole, so a file of any size costs memory only
-// for what it describes. A line is bounded (kMaxLineLength; a comment, from `#` on, is dropped as
-// it is read and may hold anything), a NUL byte elsewhere marks a file that is not text, and a
-// UTF-8 byte-order mark (what Windows Notepad writes) at the start is skipped. A line ends at LF,
-// CR LF or CR, as a text editor ends it.
+// for what it describes. A line ends at LF, CR LF or CR, as a text editor ends it, a comment's
+// line too. A line is bounded (kMaxLineLength; a comment, from `#` to the line's end, is dropped
+// as it is read and may hold anything else), a NUL byte elsewhere marks a file that is not text,
+// and a UTF-8 byte-order mark (what Windows Notepad writes) at the start is skipped.
 #include "io.h"
 #include "ray.h"
 
@@ -15,6 +15,17 @@
 #include <cstdio>
 #include <cstdlib>
 
+// Whether byte c, just read, ends a line: LF, or CR, with the LF after it if there is one
+// (Windows' CR LF; a CR alone ends a line of a classic Mac OS file).
+static bool EndsLine(FILE *file, int c) {
+    if (c == '\r') {
+        int next = getc_unlocked(file);
+        if (next != '\n' && next != EOF)
+            ungetc(next, file);
+    }
+    return c == '\n' || c == '\r';
+}
+
 LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::string *error) {
     line->clear();
     int c;
@@ -22,15 +33,9 @@ LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::stri
     // (Bytes are gathered a bufferful at a time, and read with getc_unlocked: the file is this
     // thread's alone. A lock and an append for every byte were a third of the time of reading a
     // large mesh.)
-    char kept[256];
+    char kept[256];                 // (any size would do: this one holds a mesh's usual line whole)
     size_t waiting = 0, length = 0; // bytes in `kept`; bytes of the line so far
-    while ((c = getc_unlocked(file)) != EOF && c != '\n') {
-        if (c == '\r') { // Windows' CR LF, or a CR alone (classic Mac OS), ends a line too
-            int next = getc_unlocked(file);
-            if (next != '\n' && next != EOF)
-                ungetc(next, file);
-            break;
-        }
+    while ((c = getc_unlocked(file)) != EOF && !EndsLine(file, c)) {
         comment = comment || c == '#'; // a comment is dropped as it is read: any length will do
         if (comment)
             continue;
@@ -130,15 +135,23 @@ static size_t Slips(const std::string &a, const std::string &b) {
     return row[b.size()];
 }
 
-std::string NearWord(const std::string &word, const char *const *known) {
-    for (; *known; known++) {
-        std::string k = *known;
+int NearWord(const std::string &word, const char *const *known) {
+    int nearest = -1;
+    size_t fewest = 3;   // (more than any word may be away)
+    if (word.size() < 3) // one slip could make a word of one or two letters almost anything
+        return -1;
+    for (int i = 0; known[i]; i++) {
+        std::string k = known[i];
+        if (word == k)
+            return -1;                       // a word rt knows is no slip
         size_t most = k.size() >= 6 ? 2 : 1; // (lengths further apart: more slips than that)
-        if (word != k && word.size() <= k.size() + most && k.size() <= word.size() + most &&
-            Slips(word, k) <= most)
-            return k;
+        if (word.size() > k.size() + most || k.size() > word.size() + most)
+            continue;
+        size_t slips = Slips(word, k);
+        if (slips <= most && slips < fewest) // the nearest; of equals, the first
+            nearest = i, fewest = slips;
     }
-    return "";
+    return nearest;
 }
 
 // A token as it may be shown in a message: at most 40 code points, each printable one as written
@@ -191,7 +204,7 @@ bool IsUtf8(const std::string &text) {
 }
 
 // Decimal digits with an optional sign, point and exponent: -2, +0.5, 1e-3, .5, 5.
-static bool LooksDecimal(const std::string &t) {
+bool LooksDecimal(const std::string &t) {
     size_t k = 0, digits = 0;
     if (k < t.size() && (t[k] == '+' || t[k] == '-'))
         k++;
@@ -235,11 +248,16 @@ bool ParseReal(const std::string &token, real *value, std::string *error) {
     // several times faster: a large mesh is mostly numbers). Where from_chars does not read the
     // whole token, or finds it out of range, strtod reads it, and tells too large (infinity)
     // from too small (0) as before.
+    // (Where the library has no from_chars for double, as libc++ before LLVM 20, strtod alone.)
     double v;
+#if defined(__cpp_lib_to_chars)
     const char *first = token.data() + (token[0] == '+'), *last = token.data() + token.size();
     std::from_chars_result read = std::from_chars(first, last, v);
     if (read.ec != std::errc() || read.ptr != last)
         v = strtod(token.c_str(), nullptr);
+#else
+    v = strtod(token.c_str(), nullptr);
+#endif
     if (!std::isfinite(v) || !std::isfinite((real)v)) {
         *error = "number out of range: " + Shown(token);
         return false;

@@ -67,6 +67,18 @@ std::string ReadFile(const std::string &path);
 // returned in *stderrText; returns the exit status (-1 if it did not exit normally).
 int RunRay(const std::string &dir, const std::string &args, std::string *stderrText);
 
+// RunRay after a command that pipes into it: `PIPE ray ARGS` (PIPE: nothing, or a command and
+// `|`).
+int RunRayAfter(const std::string &dir, const std::string &pipe, const std::string &args,
+                std::string *stderrText);
+
+// Whether a file exists and can be read; what the last RunRay wrote to standard output.
+bool FileExists(const std::string &path);
+std::string ReadOutput(const std::string &dir);
+
+// `ray --compare`, in the test directory TestProgram makes (test_compare.cpp).
+void TestCompare(const std::string &dir);
+
 // The test groups, one per file.
 void TestGeometry();
 void TestTriangles();
@@ -74,6 +86,7 @@ void TestShading();
 void TestCamera();
 void TestAssignmentImage();
 void TestSceneFiles();
+void TestText();
 void TestProbes();
 void TestProgram();
 void TestCorpus();

@@ -107,6 +107,7 @@ int main() {
     TestPacket();
     TestPath();
     TestSceneFiles();
+    TestText();
     TestMesh();
     TestMeshRays();
     TestProbes();
