@@ -7,6 +7,9 @@
 #include "ray.h"
 #include "render.h"
 
+#include <algorithm>
+#include <cmath>
+
 // The screen lies `distance` in front of the eye (at z = eye.z - distance), centred on the line
 // of sight, width p.width, with square pixels of size width / widthPixels; screen x grows to the
 // right and y grows up, while screenCoord.y counts pixel rows down from the top.
@@ -122,6 +125,9 @@ void PlanRender(const Scene *scene, RenderSettings *settings) {
 // (less than a pixel's width across 256 pixels). A perspective or lookat camera adapts its
 // screen to the image instead.
 bool SquarePixels(double W, double H, double h, double v) {
+    double longer = std::max(h, v); // (edges of 1e308 rescaled first: W v would overflow)
+    if (longer > 0 && std::isfinite(longer))
+        h /= longer, v /= longer;
     return std::fabs(W * v - H * h) <= (W * v + H * h) / 512;
 }
 
@@ -134,7 +140,7 @@ bool SquareSize(int width, double h, double v, int *W, int *H) {
     const int kMaxSide = 16384; // as --size and `size` allow
     for (int away = 0; away < kMaxSide; away++)
         for (int w : {width - away, width + away}) { // (the narrower first)
-            double exact = w * v / h;
+            double exact = w * (v / h); // (v / h first: w v may overflow where v / h does not)
             int height = exact >= kMaxSide ? kMaxSide : std::max(1, (int)std::lround(exact));
             if (w >= 1 && w <= kMaxSide && SquarePixels(w, height, h, v)) {
                 *W = w, *H = height;

@@ -315,7 +315,8 @@ static bool CheckCombinations(const Options *opt, const std::string &seen, std::
 }
 
 // The message for an option rt does not know. `--size=64`, the GNU way, is told how rt writes it,
-// and a slip of the keyboard the option it may be (NearWord, the dashes not counted).
+// and a slip of the keyboard the option it may be: the same letters with other dashes, or
+// letters a slip away (NearWord).
 static std::string UnknownOption(const std::string &a) {
     size_t equals = a.find('=');
     std::string name = a.substr(0, equals);
@@ -334,7 +335,11 @@ static std::string UnknownOption(const std::string &a) {
         bare.push_back(o.name + strspn(o.name, "-"));
     bare.push_back(nullptr);
     size_t dashes = strspn(name.c_str(), "-");
-    int near = dashes > 0 ? NearWord(name.substr(dashes), bare.data()) : -1;
+    int near = -1; // the option with these letters and other dashes (-size), or a slip away
+    for (int k = 0; bare[k] && dashes > 0; k++)
+        near = name.substr(dashes) == bare[k] ? k : near;
+    if (near < 0 && dashes > 0)
+        near = NearWord(name.substr(dashes), bare.data());
     return "unknown option '" + a + "'" +
            (near < 0 ? "" : ": did you mean '" + std::string(kOptions[near].name) + "'?") +
            " (see ray --help)";

@@ -303,9 +303,11 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
     std::string flat = opt->view ? "" : OneColourWarning(scene);
     if (!flat.empty())
         Complain("warning: " + flat);
-    bool fromEye = settings->methods.cameraRay != CAMERA_RAY_SLIDES; // (else from the screen)
+    Ray centre; // where the eye rays start: the eye, or under the slides' rays the screen
+    GetCameraRay(&settings->camera, settings->width, settings->height,
+                 {real(0.5) * settings->width, real(0.5) * settings->height}, &centre);
     for (const std::string &inside :
-         opt->view ? std::vector<std::string>() : InsideWarnings(scene, fromEye))
+         opt->view ? std::vector<std::string>() : InsideWarnings(scene, centre.origin))
         Complain("warning: " + inside);
     Image image;
     RayStats stats = {};

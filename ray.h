@@ -317,10 +317,10 @@ bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
                     std::string *error);
 
 // What a render of the scene would hide without a word, for warnings: a point light inside a
-// sphere (its shadow rays end on it, so nothing outside is lit by that light), and, where the
-// eye rays start at the eye (`fromEye`: not the slides' rays, which start on the screen), the
-// eye inside a sphere that is not glass (the image shows its inside). One line each, no prefix.
-std::vector<std::string> InsideWarnings(const Scene *scene, bool fromEye);
+// sphere (its shadow rays end on it, so nothing outside is lit by that light), and the eye rays'
+// start (the eye, or under the slides' rays the screen's centre) inside a sphere that is not
+// glass (the image shows its inside). One line each, no prefix.
+std::vector<std::string> InsideWarnings(const Scene *scene, vec3 eyeRaysStart);
 
 // ---- scene_default.cpp, scene_test.cpp: the built-in scenes ----------------------------------
 

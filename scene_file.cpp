@@ -247,7 +247,7 @@ static std::string Described(const Sphere *s) {
     return Where("the sphere at", s->center) + radius;
 }
 
-std::vector<std::string> InsideWarnings(const Scene *scene, bool fromEye) {
+std::vector<std::string> InsideWarnings(const Scene *scene, vec3 eyeRaysStart) {
     std::vector<std::string> warnings;
     for (const Light &light : scene->lights)
         if (const Sphere *s = SphereAround(scene, light.position, true))
@@ -255,13 +255,8 @@ std::vector<std::string> InsideWarnings(const Scene *scene, bool fromEye) {
                                Described(s) +
                                ": its shadow rays end on that sphere, so nothing outside it is lit "
                                "by that light");
-    const Camera *c = &scene->camera;
-    vec3 eye = c->kind == CAMERA_PERSPECTIVE ? c->perspective.eye
-               : c->kind == CAMERA_LOOKAT    ? c->from
-                                             : c->eye;
-    const Sphere *s = fromEye ? SphereAround(scene, eye, false) : nullptr;
-    if (s)
-        warnings.push_back(Where("the eye at", eye) + " is inside " + Described(s) +
-                           ": the image shows that sphere from inside");
+    if (const Sphere *s = SphereAround(scene, eyeRaysStart, false))
+        warnings.push_back(Where("the eye rays start at", eyeRaysStart) + ", inside " +
+                           Described(s) + ": the image shows that sphere from inside");
     return warnings;
 }

@@ -68,10 +68,8 @@ static bool FindMaterial(const Statement *st, const Scene *scene, size_t index, 
         }
     }
     return Fail(st,
-                st->tokens[0] + ": material " + Shown(name) +
-                    (LooksDecimal(name) ? " is not defined (a number where the material's name "
-                                          "goes: is the name left out?)"
-                                        : " is not defined (define it above)"),
+                st->tokens[0] + ": material " + Shown(name) + " is not defined (define it above" +
+                    (LooksDecimal(name) ? "; or, if it is a number, the name is left out)" : ")"),
                 error);
 }
 
@@ -79,11 +77,16 @@ static bool FindMaterial(const Statement *st, const Scene *scene, size_t index, 
 // another count, the message counts what it found: with one number too many, the word after the
 // numbers is still the material's name, and calling that name the extra value would blame the
 // wrong word. (Numbers are counted as written, in range or not: Numbers judges their range.)
-static bool ShapeArity(const Statement *st, size_t numbers, std::string *error) {
+static bool ShapeArity(const Statement *st, const Scene *scene, size_t numbers,
+                       std::string *error) {
     const std::vector<std::string> &t = st->tokens;
     size_t given = t.size() - 1, found = 0; // found: the numbers before the first other word
     while (found < given && LooksDecimal(t[found + 1]))
         found++;
+    bool named = false; // the last word names a material, even one named like a number (`2`)
+    for (const Material &m : scene->materials)
+        named = named || (given > 0 && m.name == t[given]);
+    found = named && found == given ? given - 1 : found;
     if (given == numbers + 1) // the count is right: Numbers and FindMaterial judge the words
         return true;
     if (found == numbers && given > numbers + 1)
@@ -103,7 +106,7 @@ static bool ShapeArity(const Statement *st, size_t numbers, std::string *error) 
 bool ReadSphere(const Statement *st, Scene *scene, std::string *error) {
     real v[4];
     Sphere s;
-    if (!ShapeArity(st, 4, error) || !Numbers(st, 1, 4, 6, v, error) ||
+    if (!ShapeArity(st, scene, 4, error) || !Numbers(st, 1, 4, 6, v, error) ||
         !FindMaterial(st, scene, 5, &s.material, error))
         return false;
     if (!(v[3] > 0))
@@ -135,7 +138,7 @@ static const char *Unhittable(const Triangle *t) {
 bool ReadTriangle(const Statement *st, Scene *scene, std::string *error) {
     real v[9];
     Triangle t;
-    if (!ShapeArity(st, 9, error) || !Numbers(st, 1, 9, 11, v, error) ||
+    if (!ShapeArity(st, scene, 9, error) || !Numbers(st, 1, 9, 11, v, error) ||
         !FindMaterial(st, scene, 10, &t.material, error))
         return false;
     t.a = {v[0], v[1], v[2]};

@@ -248,7 +248,8 @@ bool ParseReal(const std::string &token, real *value, std::string *error) {
     // several times faster: a large mesh is mostly numbers). Where from_chars does not read the
     // whole token, or finds it out of range, strtod reads it, and tells too large (infinity)
     // from too small (0) as before.
-    // (Where the library has no from_chars for double, as libc++ before LLVM 20, strtod alone.)
+    // (Where the library does not declare from_chars for double (__cpp_lib_to_chars), as libc++
+    // may not, strtod alone: the same double, more slowly.)
     double v;
 #if defined(__cpp_lib_to_chars)
     const char *first = token.data() + (token[0] == '+'), *last = token.data() + token.size();

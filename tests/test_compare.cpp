@@ -56,14 +56,18 @@ static void TestComparePpm(const std::string &dir) {
     std::ofstream(dir + "/plain.ppm") << plain;
     std::ofstream(dir + "/fifteen.ppm") << fifteen;
     std::ofstream(dir + "/wide.ppm", std::ios::binary) << wide;
+    std::string wideLf = wide; // the same, the comment ended by LF
+    wideLf[wideLf.find('\r')] = '\n';
+    std::ofstream(dir + "/widelf.ppm", std::ios::binary) << wideLf;
     std::ofstream(dir + "/cut.ppm") << plain.substr(0, plain.size() - 8);
     CHECK(RunRay(dir, "--compare four.png plain.ppm", &err) == 0,
           "a plain (P3) PPM with a comment: the same picture, exit 0 (" + err + ")");
     CHECK(RunRayAfter(dir, "cat four.png |", "--compare four.png /dev/stdin", &err) == 0 &&
               RunRayAfter(dir, "cat plain.ppm |", "--compare four.png /dev/stdin", &err) == 0,
           "a PNG and a PPM read from a pipe (nothing sought): the same picture (" + err + ")");
-    CHECK(RunRay(dir, "--compare four.png wide.ppm", &err) == 0,
-          "a P6 PPM of 16-bit samples, a comment straight after its header ended by a CR: "
+    CHECK(RunRay(dir, "--compare four.png wide.ppm", &err) == 0 &&
+              RunRay(dir, "--compare four.png widelf.ppm", &err) == 0,
+          "a P6 PPM of 16-bit samples, a comment straight after its header ended by CR or LF: "
           "rescaled to the same picture, exit 0 (" +
               err + ")");
     CHECK(RunRay(dir, "--compare four.png fifteen.ppm --tolerance 9", &err) == 0 &&

@@ -87,7 +87,10 @@ static const BadRun kBadRuns[] = {
     {"--size=64", 2, "unknown option '--size=64': write '--size 64'"},
     {"--thread 2", 2, "unknown option '--thread': did you mean '--threads'? (see ray --help)"},
     {"--szie 8", 2, "unknown option '--szie': did you mean '--size'?"},
-    {"--vie normal", 2, "did you mean '--view'?"}, // (the nearest: '--size' is two slips away)
+    {"--vie normal", 2, "did you mean '--view'?"},
+    {"-size 8", 2, "unknown option '-size': did you mean '--size'?"}, // (one dash short)
+    {"---threads 2", 2, "did you mean '--threads'?"},
+    {"--o x.png", 2, "did you mean '-o'?"},
     {"--ray=0", 2, "write '--ray' and then its values, each a word of its own"},
     {"--stats=1", 2, "write '--stats' alone: it takes no value"},
     {"--size", 2, "needs 1 value"},
@@ -165,6 +168,9 @@ static void TestBadInput(const std::string &dir) {
 // refused with the size that fits; the scene's own size is warned of.
 static void TestScreenCameraSizes(const std::string &dir) {
     std::string err;
+    CHECK(SquarePixels(8, 8, 1e308, 1e308) && !SquarePixels(8, 8, 1e308, 5e307) &&
+              SquarePixels(8, 4, 1e-310, 5e-311),
+          "square pixels judged for edges of 1e308 (8 x 8 times 1e308 would overflow) and 1e-310");
     // A screen camera keeps its shape: a --size of another shape would stretch the pixels
     char cwd[4096];
     std::string handout2 =
@@ -232,8 +238,8 @@ static void TestHiddenWarnings(const std::string &dir) {
                      "radius 1: its shadow rays end on that sphere, so nothing outside it is lit "
                      "by that light\nray: warning: the light at (9 0 -5) is inside the sphere at "
                      "(9 0 -5) of radius 1: its shadow rays end on that sphere, so nothing outside "
-                     "it is lit by that light\nray: warning: the eye at (0 0 0) is inside the "
-                     "sphere at (0 0 0) of radius 2: the image shows that sphere from inside\n",
+                     "it is lit by that light\nray: warning: the eye rays start at (0 0 0), inside "
+                     "the sphere at (0 0 0) of radius 2: the image shows that sphere from inside\n",
           "a light inside a sphere, even glass, and the eye inside one: warned of (" + err + ")");
     std::ofstream(dir + "/glass.scene") << "size 8 8\nmaterial g glass 1.5\nsphere 0 0 0 2 g\n"
                                            "light 0 5 0\n";
@@ -244,11 +250,20 @@ static void TestHiddenWarnings(const std::string &dir) {
     std::ofstream(dir + "/nested.scene") << "size 8 8\nmaterial g glass 1.5\nmaterial m\n"
                                             "sphere 0 0 0 1 g\nsphere 0 0 0 2 m\n";
     CHECK(RunRay(dir, "nested.scene -o ne.png", &err) == 0 &&
-              err.find("the eye at (0 0 0) is inside the sphere at (0 0 0) of radius 2:") !=
-                  std::string::npos &&
+              err.find("the eye rays start at (0 0 0), inside the sphere at (0 0 0) of radius "
+                       "2:") != std::string::npos &&
               RunRay(dir, "nested.scene -o ne.png --camera-ray slides", &err) == 0 && err.empty(),
           "the eye inside glass inside an opaque sphere: warned of the opaque one; with the "
-          "slides' eye rays, which start on the screen, not (" +
+          "slides' eye rays, which start on the screen, outside both, not (" +
+              err + ")");
+    // The slides' eye rays start on the screen, 2 in front of the eye: inside this sphere
+    std::ofstream(dir + "/screen.scene") << "size 8 8\nmaterial m\nsphere 0 0 -1.5 1 m\n";
+    CHECK(RunRay(dir, "screen.scene -o sc.png", &err) == 0 && err.empty() &&
+              RunRay(dir, "screen.scene -o sc.png --methods handout", &err) == 0 &&
+              err.find("the eye rays start at (0 0 -2), inside the sphere at (0 0 -1.5)") !=
+                  std::string::npos,
+          "a sphere around the screen but not the eye: warned of with the slides' eye rays "
+          "(--methods handout) alone (" +
               err + ")");
     // A scene that can only be one colour: rendered, with a warning; probed, or seen in a view,
     // without one

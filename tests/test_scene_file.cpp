@@ -67,7 +67,10 @@ static const BadScene kBadScenes[] = {
     {"material m\nsphere 0 0 -5 1 1 m", 2, "found 5 numbers and then 'm'"}, // not "extra value 'm'"
     {"material m\nsphere 0 0 -5 1 1e999 m", 2, "found 5 numbers and then 'm'"}, // (any size)
     {"material m\nsphere 0,0,-6 1 m", 2, "sphere: not a decimal number: '0,0,-6'"},
-    {"material m\nsphere 0 0 -5 1 2", 2, "material '2' is not defined (a number where the"},
+    {"material m\nsphere 0 0 -5 1 2", 2,
+     "material '2' is not defined (define it above; or, if it is a number, the name is left out)"},
+    {"material 2\nsphere 0 0 -5 1 1 2", 2, "found 5 numbers and then '2'"}, // (a name, though
+                                                                            // written as a number)
     {"material m\nsphere 0 0 -5 1", 2, "found 4 numbers and no material name"},
     {"material m\ntriangle 0 0 0 1 0 0 0 1 0 0 m", 2,
      "expected 9 numbers and a material name, found 10"},
@@ -141,7 +144,8 @@ static void TestSceneErrors() {
         {"sph\xc3\xa8re 0 0 -5 1 m\n",
          "s.scene:1: unknown keyword 'sph\xc3\xa8re' (did you mean 'sphere'?)"},
         {"spear 0 0 -5 1 m\n", "s.scene:1: unknown keyword 'spear'"}, // (three slips from sphere)
-        {"mast 1\n", "s.scene:1: unknown keyword 'mast'"}, // (two slips from mesh: a word of four letters may be one away)
+        {"mast 1\n", "s.scene:1: unknown keyword 'mast'"}, // (two slips from mesh: a word of four
+                                                           // letters may be one away)
         {"spher\x01 0 0 -5 1 m\n", "s.scene:1: unknown keyword 'spher?' (it holds a control "
                                    "character, shown as '?': an invisible character typed or "
                                    "pasted into the file)"},

@@ -76,6 +76,9 @@ static void TestLineLimit() {
 // NearWord names the known word a slip or two away, the nearest of several, and nothing for a
 // word further away, a word it knows, or a word of one or two letters.
 static void TestNearWord() {
+    static const char *const kTwo[] = {"spheres", "sphere", nullptr};
+    CHECK(NearWord("spherr", kTwo) == 1,
+          "NearWord('spherr'): 'sphere', one slip away, not 'spheres', two slips and first");
     static const char *const kWords[] = {"size", "sphere", "spp", "view", "triangle", nullptr};
     const struct {
         const char *word;
