@@ -56,13 +56,18 @@ static bool LooksLikeObj(const std::vector<std::string> &t) {
 // What an unknown keyword may say about the mistake: a keyword in capitals, a Wavefront OBJ file
 // given where a scene file goes, a file that is not UTF-8 text (a PNG image), an invisible
 // control character, or a slip of the keyboard (NearWord).
+// A word with its ASCII capitals made small (every keyword and setting word is ASCII).
+static std::string LowerCase(std::string word) {
+    for (char &c : word)
+        c = (char)std::tolower((unsigned char)c);
+    return word;
+}
+
 static std::string KeywordHint(const std::vector<std::string> &tokens) {
     static const char *const kKeywords[] = {"size",       "camera", "shading",  "ambient",
                                             "background", "depth",  "material", "sphere",
                                             "triangle",   "mesh",   "light",    nullptr};
-    std::string lower = tokens[0];
-    for (char &c : lower)
-        c = (char)std::tolower((unsigned char)c);
+    std::string lower = LowerCase(tokens[0]);
     for (const char *const *keyword = kKeywords; *keyword; keyword++)
         if (lower == *keyword)
             return " (keywords are written in lower case: '" + lower + "')";
@@ -83,9 +88,7 @@ static std::string KeywordHint(const std::vector<std::string> &tokens) {
 static bool ReadShading(const Statement *st, Scene *scene, std::string *error) {
     if (st->tokens.size() > 2)
         return Fail(st, "shading: extra value " + Shown(st->tokens[2]), error);
-    std::string word = st->tokens.size() == 2 ? st->tokens[1] : "", lower = word;
-    for (char &c : lower)
-        c = (char)std::tolower((unsigned char)c);
+    std::string word = st->tokens.size() == 2 ? st->tokens[1] : "", lower = LowerCase(word);
     if (lower != "floor" && lower != "phong" && lower != "path")
         return Fail(st, "shading: expected 'floor', 'phong' or 'path'", error);
     if (word != lower)

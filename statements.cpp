@@ -58,15 +58,19 @@ static bool CheckLight(const Statement *st, const char *what, color c, std::stri
     return ok || Fail(st, std::string(what) + ": each value must be a finite number >= 0", error);
 }
 
+// The place of the material called `name` in scene->materials, or -1.
+static int MaterialNamed(const Scene *scene, const std::string &name) {
+    for (size_t k = 0; k < scene->materials.size(); k++)
+        if (scene->materials[k].name == name)
+            return (int)k;
+    return -1;
+}
+
 static bool FindMaterial(const Statement *st, const Scene *scene, size_t index, int *material,
                          std::string *error) {
     const std::string &name = st->tokens[index];
-    for (size_t k = 0; k < scene->materials.size(); k++) {
-        if (scene->materials[k].name == name) {
-            *material = (int)k;
-            return true;
-        }
-    }
+    if ((*material = MaterialNamed(scene, name)) >= 0)
+        return true;
     return Fail(st,
                 st->tokens[0] + ": material " + Shown(name) + " is not defined (define it above" +
                     (LooksDecimal(name) ? "; or, if it is a number, the name is left out)" : ")"),
@@ -83,9 +87,8 @@ static bool ShapeArity(const Statement *st, const Scene *scene, size_t numbers,
     size_t given = t.size() - 1, found = 0; // found: the numbers before the first other word
     while (found < given && LooksDecimal(t[found + 1]))
         found++;
-    bool named = false; // the last word names a material, even one named like a number (`2`)
-    for (const Material &m : scene->materials)
-        named = named || (given > 0 && m.name == t[given]);
+    // (the last word names a material, even one named like a number: `2`)
+    bool named = given > 0 && MaterialNamed(scene, t[given]) >= 0;
     found = named && found == given ? given - 1 : found;
     if (given == numbers + 1) // the count is right: Numbers and FindMaterial judge the words
         return true;
@@ -220,9 +223,8 @@ bool ReadMaterial(const Statement *st, Scene *scene, std::string *error) {
     if (st->tokens.size() < 2)
         return Fail(st, "material: missing name", error);
     Material m = {st->tokens[1], {1, 1, 1}, {1, 1, 1}, 0, 1, 0, 0, {0, 0, 0}};
-    for (const Material &other : scene->materials)
-        if (other.name == m.name)
-            return Fail(st, "material " + Shown(m.name) + " is defined twice", error);
+    if (MaterialNamed(scene, m.name) >= 0)
+        return Fail(st, "material " + Shown(m.name) + " is defined twice", error);
     std::string keysSeen;
     for (size_t k = 2; k < st->tokens.size();) {
         const std::string &key = st->tokens[k];
