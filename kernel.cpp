@@ -50,7 +50,9 @@ static RT_INLINE bool HitSheared(const Scene *scene, int skip, const Ray *ray, r
                 tMin,
                 tMax,
                 -1,
-                anyHit};
+                anyHit,
+                1 / Component(ray->dir, kz),
+                OriginPad(ray)};
     Splat(&s.lanes.ox, shear.origin.x), Splat(&s.lanes.oy, shear.origin.y);
     Splat(&s.lanes.oz, shear.origin.z), Splat(&s.lanes.sx, shear.sx);
     Splat(&s.lanes.sy, shear.sy);

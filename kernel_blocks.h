@@ -154,7 +154,21 @@ struct Search {
     real tMin, tMax;
     int best; // place of the nearest triangle hit so far; -1: none (or only a sphere)
     bool anyHit;
+    real inverse, originPad; // 1 / d and OriginPad on the main axis, for OutOfReach
 };
+
+// A triangle whose window (plane.cpp) lies wholly at or beyond `limit`, or at or before tMin:
+// it cannot be hit, since every hit lies in its triangle's window, and the window lies inside
+// the box's slab on any one axis (SlabInterval, whose steps on the main axis are these, with
+// the same rounding). One slab costs about a tenth of the plane test it saves a triangle
+// that the line crosses out of reach: the ceiling behind a lamp that a shadow ray aims at, a
+// wall behind the ray's origin.
+template <int kz> static RT_INLINE bool OutOfReach(const Box *box, const Search *s, real limit) {
+    real pad = kBoxAllowance * box->size + s->originPad, first, last;
+    SlabEnds(box->lo[kz], box->hi[kz], pad, Component(s->ray->origin, kz), s->inverse,
+             std::signbit(s->inverse), &first, &last);
+    return first >= limit || last <= s->tMin;
+}
 
 // The full test for the survivors of blocks [first, first + count). A triangle at the same t
 // as the nearest so far counts only if it comes earlier in the scene (so the tMax it is tested
@@ -174,6 +188,8 @@ static RT_INLINE bool TestBlocks(const TriangleBlock *blocks, int first, int cou
             real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;
             const Triangle *tri = &s->triangles[index];
             const TriangleSetUp *setUp = &s->setUps[index];
+            if (OutOfReach<kz>(&setUp->box, s, limit))
+                continue;
             if (!(sure >> lane & 1u
                       ? RobustPlaneHit(tri, setUp, s->ray, s->tMin, limit, hit)
                       : IntersectWatertight(tri, setUp, s->ray, s->shear, s->tMin, limit, hit)))

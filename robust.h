@@ -35,6 +35,14 @@ inline SlabRay MakeSlabRay(const Ray *ray) {
     return r;
 }
 
+// One axis of SlabInterval: where the line enters (*first) and leaves (*last) the slab lo..hi,
+// widened by pad on both sides.
+inline void SlabEnds(real lo, real hi, real pad, real o, real inverse, bool backward, real *first,
+                     real *last) {
+    real a = ((lo - pad) - o) * inverse, b = ((hi + pad) - o) * inverse;
+    *first = backward ? b : a, *last = backward ? a : b;
+}
+
 // The interval of t in which the line is inside the box lo..hi, whose largest |coordinate| is
 // `size`, widened on every side by kBoxAllowance (size + the origin's size). A 0 * infinity (a
 // ray along a box face) is NaN and restricts nothing, nor does a box of non-finite size. The
@@ -46,8 +54,8 @@ inline void SlabInterval(const real lo[3], const real hi[3], real size, const Sl
     const real inv[3] = {r->inverse.x, r->inverse.y, r->inverse.z};
     real near = -kInfinity, far = kInfinity;
     for (int i = 0; i < 3; i++) {
-        real a = ((lo[i] - pad) - o[i]) * inv[i], b = ((hi[i] + pad) - o[i]) * inv[i];
-        real first = r->backward[i] ? b : a, last = r->backward[i] ? a : b;
+        real first, last;
+        SlabEnds(lo[i], hi[i], pad, o[i], inv[i], r->backward[i], &first, &last);
         near = first > near ? first : near; // (NaN compares false: no restriction)
         far = last < far ? last : far;
     }
