@@ -134,6 +134,24 @@ struct ScaledRay {
     real tMin, tMax;
 };
 
+// The scaled ray's interval: (tMin 2^-k, tMax 2^-k), cut so that every t' in it comes back
+// (ScaleBack, t = t' 2^k) inside (tMin, tMax). Between normal numbers the scaling is exact and
+// cuts nothing; at the ends of the range t' 2^k overflows or rounds to 0, and a shape found
+// there would be refused on the way back, leaving no answer: a search for any hit, stopped at
+// it, would miss a nearer shape that blocks the ray, and the nearest hit one farther. So the
+// ends are cut to t' whose t is the first number above tMin and the last below tMax (each
+// found within one step: ScaleByPowerOfTwo rounds monotonically). Only a t' that rounds onto
+// one of those two numbers from outside them is then left out of the search.
+static void ScaledInterval(real tMin, real tMax, int k, real *lo, real *hi) {
+    real first = ScaleByPowerOfTwo(NextAfter(tMin, true), -k);
+    if (!(ScaleByPowerOfTwo(first, k) > tMin))
+        first = NextAfter(first, true);
+    real last = ScaleByPowerOfTwo(NextAfter(tMax, false), -k);
+    if (!(ScaleByPowerOfTwo(last, k) < tMax))
+        last = NextAfter(last, false);
+    *lo = NextAfter(first, false), *hi = NextAfter(last, true); // (both ends open)
+}
+
 static bool ScaleRay(const Ray *ray, real tMin, real tMax, ScaledRay *s) {
     if (SearchedAsIs(ray->dir)) { // s->ray is not needed
         s->k = 0, s->tMin = tMin, s->tMax = tMax;
@@ -141,8 +159,7 @@ static bool ScaleRay(const Ray *ray, real tMin, real tMax, ScaledRay *s) {
     }
     s->k = UnitExponent(ray->dir);
     s->ray = {ray->origin, ScaleByPowerOfTwo(ray->dir, s->k)};
-    s->tMin = ScaleByPowerOfTwo(tMin, -s->k);
-    s->tMax = ScaleByPowerOfTwo(tMax, -s->k);
+    ScaledInterval(tMin, tMax, s->k, &s->tMin, &s->tMax);
     return MaxComponent(s->ray.dir) >= 1 && IsFinite(s->ray.dir);
 }
 

@@ -122,6 +122,37 @@ static void TestDirectionSizes() {
     }
 }
 
+// A direction the search rescales, with a shape whose t leaves the range of numbers on the way
+// back. A tiny direction, 2^-70 (float: 2^-12): a triangle at z = 1e300 (float: 3e38), first in
+// the scene, lies at a t beyond the largest number, and one at z = 1 at t = 2^70; a search for
+// any hit must find the second, which blocks the ray. A huge direction, 1e300 (float: 1e30): a
+// triangle at z = 1e-320 (float: 1e-44) lies at a t that rounds to 0, no hit (t > 0), and the
+// nearest hit is the one at z = 1, t = 1e-300 (float: 1e-30).
+static void TestRescaledSearchRange() {
+    auto square = [](real z) { return Triangle{{-1, -1, z}, {3, -1, z}, {-1, 3, z}, 0}; };
+    Scene scene;
+    InitScene(&scene);
+    scene.materials.push_back(Matte("m", {1, 1, 1}));
+    real tiny = kDouble ? real(0x1p-70) : real(0x1p-12);
+    scene.triangles = {square(kDouble ? real(1e300) : real(3e38)), square(1)};
+    Ray ray = {{0, 0, 0}, {0, 0, tiny}};
+    RayHit hit;
+    CHECK(AnyHit(&scene, kRobustMethods, &ray, 0, kInfinity),
+          "any hit: the triangle at z = 1 blocks a ray of length 2^-70 (float: 2^-12) whose first "
+          "shape lies beyond the range of t");
+    bool found = FindNearestHit(&scene, kRobustMethods, &ray, 0, kInfinity, &hit);
+    CHECK(found && hit.index == 1 && hit.t == 1 / tiny, "nearest hit: z = 1, at t = 1 / |d|");
+    real huge = kDouble ? real(1e300) : real(1e30);
+    scene.triangles = {square(kDouble ? real(1e-320) : real(1e-44)), square(1)};
+    ray = {{0, 0, 0}, {0, 0, huge}};
+    found = FindNearestHit(&scene, kRobustMethods, &ray, 0, kInfinity, &hit);
+    CHECK(found && hit.index == 1,
+          "nearest hit past a shape whose t rounds to 0: the triangle at z = 1");
+    if (found)
+        CHECK_NEAR(hit.t, 1 / (double)huge, kRelTol / (double)huge, "at t = 1 / |d|");
+    CHECK(AnyHit(&scene, kRobustMethods, &ray, 0, kInfinity), "any hit: the same ray is blocked");
+}
+
 // Spheres of radius 1e-200 and 1e200 (float: 1e-30 and 1e30), seen from 10 radii: a ray 3 degrees
 // off the line to the centre hits (the sphere spans 5.7 degrees), on the sphere with a unit
 // normal; 31 degrees off misses.
@@ -250,6 +281,7 @@ void TestRanges() {
     TestFarFromTheOrigin();
     TestHugeCamera();
     TestDirectionSizes();
+    TestRescaledSearchRange();
     TestSphereSizes();
     TestFarLight();
     TestGlassOfIndexOne();
