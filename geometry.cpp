@@ -141,8 +141,10 @@ struct ScaledRay {
 // it, would miss a nearer shape that blocks the ray, and the nearest hit one farther. So the
 // ends are cut to t' whose t is the first number above tMin and the last below tMax (each
 // found within one step: ScaleByPowerOfTwo rounds monotonically). Only a t' that rounds onto
-// one of those two numbers from outside them is then left out of the search.
-static void ScaledInterval(real tMin, real tMax, int k, real *lo, real *hi) {
+// one of those two numbers from outside them is then left out of the search. (Cold: only a
+// direction outside the window comes here, and inlined it made ScaleRay too large to be inlined
+// into every search: 3% more instructions for the assignment.)
+RT_COLD static void ScaledInterval(real tMin, real tMax, int k, real *lo, real *hi) {
     real first = ScaleByPowerOfTwo(NextAfter(tMin, true), -k);
     if (!(ScaleByPowerOfTwo(first, k) > tMin))
         first = NextAfter(first, true);

@@ -51,6 +51,7 @@ static RT_INLINE bool HitSheared(const Scene *scene, int skip, const Ray *ray, r
                 tMax,
                 -1,
                 anyHit,
+                tMax < kInfinity,
                 1 / Component(ray->dir, kz),
                 OriginPad(ray)};
     Splat(&s.lanes.ox, shear.origin.x), Splat(&s.lanes.oy, shear.origin.y);

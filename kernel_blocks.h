@@ -154,6 +154,7 @@ struct Search {
     real tMin, tMax;
     int best; // place of the nearest triangle hit so far; -1: none (or only a sphere)
     bool anyHit;
+    bool bounded;            // tMax was finite from the start: OutOfReach is tried
     real inverse, originPad; // 1 / d and OriginPad on the main axis, for OutOfReach
 };
 
@@ -162,7 +163,10 @@ struct Search {
 // the box's slab on any one axis (SlabInterval, whose steps on the main axis are these, with
 // the same rounding). One slab costs about a tenth of the plane test it saves a triangle
 // that the line crosses out of reach: the ceiling behind a lamp that a shadow ray aims at, a
-// wall behind the ray's origin.
+// wall behind the ray's origin. Tried only in a search whose tMax was finite from the start
+// (shadow rays, and a path's rays toward a lamp), where such triangles are common: for rays
+// with an open interval it bought nothing, and on the assignment's eye rays at 1 spp it cost 6%
+// of the time for 0.3% more instructions.
 template <int kz> static RT_INLINE bool OutOfReach(const Box *box, const Search *s, real limit) {
     real pad = kBoxAllowance * box->size + s->originPad, first, last;
     SlabEnds(box->lo[kz], box->hi[kz], pad, Component(s->ray->origin, kz), s->inverse,
@@ -188,7 +192,7 @@ static RT_INLINE bool TestBlocks(const TriangleBlock *blocks, int first, int cou
             real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;
             const Triangle *tri = &s->triangles[index];
             const TriangleSetUp *setUp = &s->setUps[index];
-            if (OutOfReach<kz>(&setUp->box, s, limit))
+            if (s->bounded && OutOfReach<kz>(&setUp->box, s, limit))
                 continue;
             if (!(sure >> lane & 1u
                       ? RobustPlaneHit(tri, setUp, s->ray, s->tMin, limit, hit)

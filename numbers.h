@@ -28,6 +28,9 @@ const real kPi = real(3.14159265358979323846);
 // Always inlined: the speed machinery's small helpers (the kernel, the BVH build, the plane
 // test's common case), where a call would cost more than the work (GCC and clang).
 #define RT_INLINE inline __attribute__((always_inline))
+// Never inlined, and laid out apart: a rare path, kept out of the common one so that the function
+// that calls it stays small (GCC and clang).
+#define RT_COLD __attribute__((noinline, cold))
 
 // Unit roundoff u: the largest relative error of one correctly rounded operation (half an ulp
 // of 1). Every tolerance in rt is a multiple of u derived from an error bound, never a fixed

@@ -33,9 +33,8 @@ static dvec3 CrossTerms(dvec3 a, dvec3 b) {
             std::fabs(a.x * b.y) + std::fabs(a.y * b.x)};
 }
 
-// Kept out of line: the rare tiers and set-ups, so that the common path through RobustPlaneHit
-// is a small function whose values stay in registers.
-#define RT_COLD __attribute__((noinline, cold))
+// The rare tiers and set-ups are RT_COLD, out of line, so that the common path through
+// RobustPlaneHit is a small function whose values stay in registers.
 
 // kU, GammaD, kPlainRelativeError and kFirstOrderShare are in robust.h: the kernel's packets
 // (plane_lanes.h) compute tier 1 too.
