@@ -134,21 +134,34 @@ struct ScaledRay {
     real tMin, tMax;
 };
 
+// Where ScaledInterval cuts the search at one end of the interval, `end`, whose next number
+// inward is `inward`. Where scaling back rounds (k < 0 and t below the normal numbers), a t'
+// past halfway between end 2^-k and inward 2^-k comes back as `inward` (rounding to nearest)
+// and one short of it as `end`, so the cut is halfway; elsewhere scaling back is exact, and the
+// cut is inward 2^-k. (Exact: for k < 0 both are scaled up, and the halfway point of two numbers
+// that came from neighbours in t has a bit to spare in t'.)
+static real CutAt(real end, real inward, int k) {
+    real a = ScaleByPowerOfTwo(end, -k), b = ScaleByPowerOfTwo(inward, -k);
+    if (k >= 0 || !std::isfinite(a) || !std::isfinite(b))
+        return b;
+    return a + (b - a) / 2;
+}
+
 // The scaled ray's interval: (tMin 2^-k, tMax 2^-k), cut so that every t' in it comes back
 // (ScaleBack, t = t' 2^k) inside (tMin, tMax). Between normal numbers the scaling is exact and
 // cuts nothing; at the ends of the range t' 2^k overflows or rounds to 0, and a shape found
 // there would be refused on the way back, leaving no answer: a search for any hit, stopped at
-// it, would miss a nearer shape that blocks the ray, and the nearest hit one farther. So the
-// ends are cut to t' whose t is the first number above tMin and the last below tMax (each
-// found within one step: ScaleByPowerOfTwo rounds monotonically). Only a t' that rounds onto
-// one of those two numbers from outside them is then left out of the search. (Cold: only a
-// direction outside the window comes here, and inlined it made ScaleRay too large to be inlined
-// into every search: 3% more instructions for the assignment.)
+// it, would miss a nearer shape that blocks the ray, and the nearest hit one farther. So each
+// end is cut where t' 2^k crosses it (CutAt), then checked against ScaleBack's own rounding and
+// moved one step where it falls on the wrong side (a tie rounds to even). ScaleByPowerOfTwo
+// rounds monotonically, so every t' between the two ends comes back inside, and none outside
+// them would. (Cold: only a direction outside the window comes here, and inlined it made
+// ScaleRay too large to be inlined into every search: 3% more instructions for the assignment.)
 RT_COLD static void ScaledInterval(real tMin, real tMax, int k, real *lo, real *hi) {
-    real first = ScaleByPowerOfTwo(NextAfter(tMin, true), -k);
+    real first = CutAt(tMin, NextAfter(tMin, true), k); // the least t' above tMin
     if (!(ScaleByPowerOfTwo(first, k) > tMin))
         first = NextAfter(first, true);
-    real last = ScaleByPowerOfTwo(NextAfter(tMax, false), -k);
+    real last = CutAt(tMax, NextAfter(tMax, false), k); // the largest t' below tMax
     if (!(ScaleByPowerOfTwo(last, k) < tMax))
         last = NextAfter(last, false);
     *lo = NextAfter(first, false), *hi = NextAfter(last, true); // (both ends open)

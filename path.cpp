@@ -103,8 +103,10 @@ const real kShortOfEmitter = real(0x1p-20);
 // nowhere before p). The search stops 2^-20 of the way short of p, so the shapes it does not look
 // at are e, those beyond it (the ceiling behind a lamp, which the box test, OutOfReach, refuses
 // before any plane test), and a shape within 2^-20 of the way in front of p, which touches e
-// there. (Looking for e itself, to just past p, took 6% more instructions on the Cornell box; and
-// it took a p that the line misses by a rounding, on the very edge of e, as hidden.)
+// there. (Looking for e itself, to just past p, took 6% more instructions on the Cornell box; it
+// took a p that the line misses by a rounding, on the very edge of e, as hidden; and under
+// --self-hit skip, which skips the sphere a ray leaves, a point on the inside of a glowing
+// sphere never saw the rest of it.)
 static bool EmitterVisible(Path *path, const RayHit *hit, const Emitter *e, vec3 p) {
     const Methods *methods = &path->settings->methods;
     Ray shadow;

@@ -127,7 +127,8 @@ static void TestDirectionSizes() {
 // the scene, lies at a t beyond the largest number, and one at z = 1 at t = 2^70; a search for
 // any hit must find the second, which blocks the ray. A huge direction, 1e300 (float: 1e30): a
 // triangle at z = 1e-320 (float: 1e-44) lies at a t that rounds to 0, no hit (t > 0), and the
-// nearest hit is the one at z = 1, t = 1e-300 (float: 1e-30).
+// nearest hit is the one at z = 1, t = 1e-300 (float: 1e-30); one at a t of 0.8 of the smallest
+// number is hit, at that number.
 static void TestRescaledSearchRange() {
     auto square = [](real z) { return Triangle{{-1, -1, z}, {3, -1, z}, {-1, 3, z}, 0}; };
     Scene scene;
@@ -151,6 +152,12 @@ static void TestRescaledSearchRange() {
     if (found)
         CHECK_NEAR(hit.t, 1 / (double)huge, kRelTol / (double)huge, "at t = 1 / |d|");
     CHECK(AnyHit(&scene, kRobustMethods, &ray, 0, kInfinity), "any hit: the same ray is blocked");
+    // A triangle at a t of 0.8 of the smallest number rounds up to it: a hit, at that t.
+    real smallest = std::numeric_limits<real>::denorm_min();
+    scene.triangles = {square(real((double)smallest * (double)huge * 0.8)), square(1)};
+    found = FindNearestHit(&scene, kRobustMethods, &ray, 0, kInfinity, &hit);
+    CHECK(found && hit.index == 0 && hit.t == smallest,
+          "nearest hit at t = 0.8 of the smallest number: the first triangle, t rounded up to it");
 }
 
 // Spheres of radius 1e-200 and 1e200 (float: 1e-30 and 1e30), seen from 10 radii: a ray 3 degrees
