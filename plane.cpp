@@ -153,11 +153,14 @@ RT_COLD static PlaneT WidePlaneT(const PlaneProblem *p) {
 // so n.(a - o) overflows only where a - o is within that factor of overflowing itself, and the
 // scene's own numbers would fail first. ldexp scales by any power, in exact steps.
 // An edge beyond the range of numbers makes a triangle unhittable whichever corner is written
-// first: b - a and c - a overflow in n, and c - b, which n leaves out, is checked here. (Only
-// in double: the difference of two floats is finite in double.)
-static bool ThirdEdgeFinite(const Triangle *tri) {
-    dvec3 e3 = Sub(Widen(tri->c), Widen(tri->b));
-    return std::isfinite(e3.x) && std::isfinite(e3.y) && std::isfinite(e3.z);
+// first: all three edges are checked, c - b too, which n leaves out. (In double, as the set-up
+// works: the difference of two floats is always finite there.)
+bool EdgesFinite(const Triangle *tri) {
+    dvec3 a = Widen(tri->a), b = Widen(tri->b), c = Widen(tri->c);
+    for (dvec3 e : {Sub(b, a), Sub(c, a), Sub(c, b)})
+        if (!std::isfinite(e.x) || !std::isfinite(e.y) || !std::isfinite(e.z))
+            return false;
+    return true;
 }
 
 void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp) {
@@ -190,7 +193,7 @@ void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp) {
     // The unit normal, for shading. A sliver's n may be so small that n.n underflows: then it is
     // scaled by a power of two first, which changes no bit of n / |n|. (Within 2^+-500, n.n, at
     // most three squares of the largest component, stays inside double's normal range, 2^+-1022.)
-    setUp->hasArea = largest > 0 && std::isfinite(largest) && ThirdEdgeFinite(tri);
+    setUp->hasArea = largest > 0 && std::isfinite(largest) && EdgesFinite(tri);
     if (setUp->hasArea && !(largest >= 0x1p-500 && largest <= 0x1p500))
         n = Scale(std::ldexp(1.0, -std::ilogb(largest)), n);
     double inverse = 1 / std::sqrt(DotD(n, n));

@@ -85,6 +85,10 @@ inline Box TriangleBox(const Triangle *tri) {
 // normal's error bound, and whether the first tier's bound may be trusted (plane.cpp).
 void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp);
 
+// Whether every edge of tri (b - a, c - a, c - b, in double) is a finite vector: one that is not
+// makes the triangle unhittable (SetUpTriangle's hasArea is false).
+bool EdgesFinite(const Triangle *tri);
+
 // The hit record of a triangle whose interior the ray passes through (plane.cpp): t from the
 // triangle's plane, accurate for triangles of any length, and the point o + t d; false if t is
 // outside (tMin, tMax) or within its rounding error of 0 (the ray has just left this plane).

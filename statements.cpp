@@ -128,14 +128,8 @@ static const char *Unhittable(const Triangle *t) {
     SetUpTriangle(t, &setUp);
     if (setUp.hasArea)
         return nullptr;
-    bool edgesFinite = true; // in double, as SetUpTriangle works
-    for (auto e :
-         {std::make_pair(t->b, t->a), std::make_pair(t->c, t->a), std::make_pair(t->c, t->b)})
-        edgesFinite = edgesFinite && std::isfinite((double)e.first.x - e.second.x) &&
-                      std::isfinite((double)e.first.y - e.second.y) &&
-                      std::isfinite((double)e.first.z - e.second.z);
-    return edgesFinite ? "has no area (its corners are on one line)"
-                       : "has edges beyond the range of numbers";
+    return EdgesFinite(t) ? "has no area (its corners are on one line)"
+                          : "has edges beyond the range of numbers";
 }
 
 bool ReadTriangle(const Statement *st, Scene *scene, std::string *error) {
