@@ -42,6 +42,7 @@ struct TriangleSetUp {
     dvec3 n;          // (b - a) 2^scale x (c - a) 2^scale, rounded
     dvec3 nError;     // per component of n, a bound on its rounding error
     bool normalKnown; // nError small against n: the first half of FirstOrderHolds (plane.cpp)
+    char flat;        // the axis of n's largest component, across which the box is thinnest
     vec3 normal;      // n / |n|, for shading
     bool hasArea;     // n is neither 0 nor beyond the range of numbers
     real awayShare;   // for RayHit::awayShare: > 0 where normalKnown, else 0

@@ -69,8 +69,8 @@ static void Depart(Path *path, const RayHit *hit) {
 }
 
 // ShadowRay from the hit to `target`, from the departure point when there is one.
-static bool CastShadow(const Path *path, const RayHit *hit, vec3 target, Ray *ray,
-                       RayStart *start) {
+static RT_INLINE bool CastShadow(const Path *path, const RayHit *hit, vec3 target, Ray *ray,
+                                 RayStart *start) {
     if (!path->departs)
         return ShadowRay(hit, target, &path->settings->methods, ray, start);
     *ray = {path->departure, target - path->departure};

@@ -183,6 +183,7 @@ void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp) {
                     std::fabs(xy) + std::fabs(yx)};
     dvec3 e = setUp->nError = Scale(GammaD(5), nTerms);
     double largest = std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
+    setUp->flat = (char)DominantAxis({(real)n.x, (real)n.y, (real)n.z});
     setUp->normalKnown = std::max({e.x, e.y, e.z}) <= kFirstOrderShare * largest;
     // How plainly a ray must go away from the triangle to pass over it (PassesOver, robust.h):
     // the unit normal leans from the exact one by at most 2 |n - n*| / |n| <= 2 sum nError_i /

@@ -154,9 +154,28 @@ void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *ef
 color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
                const RayStart *start, RayChain chain, TraceLog *log);
 
-// Counts a ray of this kind; adds a node for it to log->tree, if a tree is being recorded, with
+// Counts a ray of this kind (inline: every ray of a path is counted).
+inline void CountRay(RayKind kind, RayStats *stats) {
+    switch (kind) {
+    case RAY_PRIMARY:
+        stats->primary++;
+        break;
+    case RAY_SHADOW:
+        stats->shadow++;
+        break;
+    case RAY_REFLECTION:
+        stats->reflection++;
+        break;
+    case RAY_REFRACTION:
+        stats->refraction++;
+        break;
+    case RAY_DIFFUSE:
+        stats->diffuse++;
+        break;
+    }
+}
+// Adds a node for a ray of this kind to log->tree, if a tree is being recorded, with
 // log->current as its parent (returns the node's index, or -1).
-void CountRay(RayKind kind, RayStats *stats);
 int RecordRay(RayKind kind, const Ray *ray, TraceLog *log);
 
 // The mirror direction of d about the unit normal n: r = d - 2 (d.n) n (the assignment handout)
@@ -175,7 +194,7 @@ real FresnelReflectance(real cosI, real eta);
 real SchlickReflectance(real cosI, real eta);
 
 // Whether a material gives off light (`emit` above 0 in some channel).
-bool Emits(const Material *m);
+inline bool Emits(const Material *m) { return m->emit.x > 0 || m->emit.y > 0 || m->emit.z > 0; }
 
 // The square root of an emitting shape's surface area (where PlanEffects finds the emitters): a
 // length, like the distances it is divided into, so that their ratio, unlike an area and a

@@ -19,8 +19,6 @@ static bool MaterialIsUsed(const Scene *scene, int material) {
     return false;
 }
 
-bool Emits(const Material *m) { return m->emit.x > 0 || m->emit.y > 0 || m->emit.z > 0; }
-
 // A triangle's (b - a) x (c - a) with both edges first multiplied by 2^*k, the power of two
 // that brings the larger edge's largest component into [1, 2): unscaled, the product of two
 // edges of 1e200 (or 1e-200) would overflow (or underflow); scaled, its direction is exact and
@@ -336,12 +334,6 @@ static color ShadeHit(const Shading *sh, const Surface *s) {
         result =
             result + k * FollowRay(sh, s, RAY_REFLECTION, Reflect(s->ray->dir, s->hit->normal), k);
     return result;
-}
-
-void CountRay(RayKind kind, RayStats *stats) {
-    uint64_t *counter[] = {&stats->primary, &stats->shadow, &stats->reflection, &stats->refraction,
-                           &stats->diffuse};
-    (*counter[kind])++;
 }
 
 // TraceRay's second half, for a ray recorded as `node` whose nearest hit has been searched for:
