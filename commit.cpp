@@ -20,6 +20,7 @@
 #include <memory>
 #include <mutex>
 #include <new>
+#include <system_error>
 #include <thread>
 
 // Below this many triangles the blocks are one list: a ray then tests them all, which is
@@ -292,14 +293,19 @@ static void SetUpAll(const std::vector<Triangle> &triangles, SceneLayout *layout
 template <typename Step> static void Help(const Step *step) { (*step)(); }
 
 // Runs `first` on this thread and `second` on another, when `threads`, and returns when both
-// are done; else one after the other.
+// are done; else, or if the system gives no thread, one after the other.
 template <typename First, typename Second>
 static void RunBoth(bool threads, const First &first, const Second &second) {
-    if (!threads) {
+    std::thread helper;
+    try {
+        if (threads)
+            helper = std::thread(Help<Second>, &second);
+    } catch (const std::system_error &) {
+    }
+    if (!helper.joinable()) {
         first(), second();
         return;
     }
-    std::thread helper(Help<Second>, &second);
     first();
     helper.join();
 }

@@ -15,6 +15,7 @@
 #include <cassert>
 #include <chrono>
 #include <cstdio>
+#include <system_error>
 #include <thread>
 
 // Rounding half away from zero, as std::lround does, without the library call (three of them a
@@ -355,8 +356,14 @@ void Render(const Scene *scene, const RenderSettings *requested, Image *image, R
     std::vector<RayStats> perThread(threads, RayStats{});
     RowQueue queue;
     std::vector<std::thread> workers;
-    for (int k = 1; k < threads; k++)
-        workers.emplace_back(RenderWorker, scene, settings, &queue, image, &perThread[k]);
+    workers.reserve(threads - 1);
+    for (int k = 1; k < threads; k++) {
+        try {
+            workers.emplace_back(RenderWorker, scene, settings, &queue, image, &perThread[k]);
+        } catch (const std::system_error &) { // the system gives no more threads (a limit on
+            break; // threads or on memory): the rows are shared, so fewer render the same bytes
+        }
+    }
 
     // The calling thread renders too; with a progress report it renders one row at a time and
     // reports every half second once the render has run that long, and once more at the end.
