@@ -163,6 +163,8 @@ inline real ScaleByPowerOfTwo(real x, int k) {
     return PowerOfTwo(k - k / 2) * (PowerOfTwo(k / 2) * x);
 }
 inline vec3 ScaleByPowerOfTwo(vec3 v, int k) {
+    if (k == 0) // (most calls: nothing to rescale, and three multiplications by 1 saved)
+        return v;
     return {ScaleByPowerOfTwo(v.x, k), ScaleByPowerOfTwo(v.y, k), ScaleByPowerOfTwo(v.z, k)};
 }
 
