@@ -318,36 +318,12 @@ bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RaySt
     return HitShapes(scene, methods, ray, start, tMax, true, &scratch);
 }
 
-// Self-intersection ("shadow acne") is prevented by one method for every ray that leaves a
-// surface (pbrt-v4 §6.8.6): the hit point is within pointError of the true surface, so moving
-// it along the normal by the error box's extent in that direction, sum |n_i| pointError_i, puts
-// it on the side the new ray goes to, whatever the scene's scale. Rounding the moved point
-// outward (NextAfter) keeps the addition itself from undoing the move. The new ray then uses
-// tMin = 0, and the intersectors' own "t above its rounding error" tests do the rest.
-static RT_INLINE vec3 OffsetOrigin(const RayHit *hit, vec3 dir) {
-    real distance = Dot(Abs(hit->normal), hit->pointError);
-    vec3 offset = distance * hit->normal;
-    if (Dot(dir, hit->normal) < 0)
-        offset = -offset;
-    vec3 moved = hit->point + offset;
-    real *coord[3] = {&moved.x, &moved.y, &moved.z};
-    real push[3] = {offset.x, offset.y, offset.z};
-    for (int i = 0; i < 3; i++) {
-        if (push[i] > 0)
-            *coord[i] = NextAfter(*coord[i], true);
-        else if (push[i] < 0)
-            *coord[i] = NextAfter(*coord[i], false);
-    }
-    return moved;
-}
-vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir) { return OffsetOrigin(hit, dir); }
-
 void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray, RayStart *start) {
     *start = kFromTheEye;
     ray->dir = dir;
     ray->origin = hit->point;
     if (methods->selfHit == SELF_HIT_BOUND) { // handout: skip the shape left, or t_min = 0.001
-        ray->origin = OffsetOrigin(hit, dir);
+        ray->origin = OffsetRayOrigin(hit, dir);
         *start = StartLeaving(hit, dir, dir);
     } else if (methods->selfHit == SELF_HIT_EPSILON) {
         start->tMin = methods->epsilon / SafeLength(dir); // epsilon world units along the ray
@@ -365,7 +341,7 @@ bool ShadowRay(const RayHit *hit, vec3 lightPosition, const Methods *methods, Ra
                RayStart *start) {
     vec3 side = lightPosition - hit->point;
     if (methods->selfHit == SELF_HIT_BOUND) {
-        ray->origin = OffsetOrigin(hit, side);
+        ray->origin = OffsetRayOrigin(hit, side);
         ray->dir = lightPosition - ray->origin;
         *start = StartLeaving(hit, side, ray->dir);
     } else {

@@ -287,14 +287,10 @@ bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, con
 bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
                 real tMax);
 
-// The origin for a ray leaving hit->point in direction dir: the point pushed off the surface by
-// its own error bound, to the side dir goes, so the new ray cannot hit the surface it leaves.
-vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir);
-
 // The ray that leaves a hit in direction dir, and what it must not hit, by the self-hit method:
-// bound, from OffsetRayOrigin, passing over the triangle it leaves where PassesOver (robust.h);
-// epsilon, from the hit point, ignoring hits closer than methods->epsilon; skip, from the hit
-// point, ignoring the shape it leaves.
+// bound, from OffsetRayOrigin (robust.h), passing over the triangle it leaves where PassesOver
+// (robust.h); epsilon, from the hit point, ignoring hits closer than methods->epsilon; skip, from
+// the hit point, ignoring the shape it leaves.
 void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray, RayStart *start);
 
 // The shadow ray from a hit to a light at lightPosition, leaving the surface as LeaveSurface

@@ -1,7 +1,7 @@
 // robust.h -- the parts of the robust triangle test that several files share: boxes along a
 // ray (the window a triangle's hit lies in, and the BVH's box test), the plane's t and its
 // error bound (plane.cpp), the watertight test's shear (watertight.cpp), and rays that leave a
-// triangle (PassesOver, StartLeaving: geometry.cpp and path.cpp).
+// surface (OffsetRayOrigin, PassesOver, StartLeaving: geometry.cpp and path.cpp).
 #pragma once
 #include "ray.h"
 
@@ -192,7 +192,31 @@ bool IntersectWatertight(const Triangle *tri, const TriangleSetUp *setUp, const 
 bool HitWatertightTriangles(const Triangle *triangles, int n, int skip, const Ray *ray,
                             const RayShear *shear, real tMin, real tMax, bool anyHit, RayHit *hit);
 
-// ---- geometry.cpp: rays that leave a triangle ---------------------------------------------------
+// ---- geometry.cpp and path.cpp: rays that leave a surface --------------------------------------
+
+// Self-intersection ("shadow acne") is prevented by one method for every ray that leaves a
+// surface (pbrt-v4 §6.8.6): the hit point is within pointError of the true surface, so moving
+// it along the normal by the error box's extent in that direction, sum |n_i| pointError_i, puts
+// it on the side the new ray goes to, whatever the scene's scale. Rounding the moved point
+// outward (NextAfter) keeps the addition itself from undoing the move. The new ray then uses
+// tMin = 0, and the intersectors' own "t above its rounding error" tests do the rest. (Inline:
+// every ray that leaves a surface starts here; out of line, a path vertex waited for its call.)
+inline vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir) {
+    real distance = Dot(Abs(hit->normal), hit->pointError);
+    vec3 offset = distance * hit->normal;
+    if (Dot(dir, hit->normal) < 0)
+        offset = -offset;
+    vec3 moved = hit->point + offset;
+    real *coord[3] = {&moved.x, &moved.y, &moved.z};
+    real push[3] = {offset.x, offset.y, offset.z};
+    for (int i = 0; i < 3; i++) {
+        if (push[i] > 0)
+            *coord[i] = NextAfter(*coord[i], true);
+        else if (push[i] < 0)
+            *coord[i] = NextAfter(*coord[i], false);
+    }
+    return moved;
+}
 
 // Whether a ray in direction dir from a point that OffsetRayOrigin moved off triangle hit, to the
 // side `side` points to, goes so plainly away from it that the shape loop may pass over it. The

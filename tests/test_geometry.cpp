@@ -3,6 +3,7 @@
 // The handout's advice: a scene, a ray, the hit you predicted. Each row is worked out on paper
 // from |o + t d - c| = r; the Ray Tracer Challenge's canonical cases are among them.
 #include "hard_cases.h"
+#include "robust.h"
 #include "test.h"
 
 #include <cstring>
