@@ -66,9 +66,9 @@ static real ScatterPdf(ScatterMethod method, real cosTheta) {
 // no sine or cosine, which cost more than the tries. A path's numbers are keyed by their use, so
 // the tries are bounded: if all kDiskTries miss (a chance of (1 - pi/4)^5, about 1 in 2,200),
 // one more pair gives the point by radius and angle, r = sqrt(u), phi = 2 pi v, which is
-// uniform too; either way the point is uniform.
+// uniform too; either way the point is uniform. (Inline: GCC called it, twice a path vertex.)
 const int kDiskTries = 5, kDiskDimensions = kDiskTries + 1;
-static vec2 DiskPoint(const PathSample *p, int bounce, int first) {
+static RT_INLINE vec2 DiskPoint(const PathSample *p, int bounce, int first) {
     for (int k = 0; k < kDiskTries; k++) {
         vec2 u = PathRandomPair(p, bounce, first + k);
         real x = 2 * u.x - 1, y = 2 * u.y - 1; // exact: 24 bits of [0, 1)
