@@ -300,14 +300,10 @@ static void RunBoth(bool threads, const First &first, const Second &second) {
     try {
         if (threads)
             helper = std::thread(Help<Second>, &second);
-    } catch (const std::system_error &) {
-    }
-    if (!helper.joinable()) {
-        first(), second();
-        return;
+    } catch (const std::system_error &) { // (no thread to be had: both here, below)
     }
     first();
-    helper.join();
+    helper.joinable() ? helper.join() : second();
 }
 
 // Once the tree is built: the leaves' blocks numbered and filled, and the four-wide tree.
