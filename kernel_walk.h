@@ -31,13 +31,13 @@ struct NodeRay {
 // (Made from the ray itself, with MakeSlabRay's operations, rather than from a SlabRay: a
 // SlabRay, built with one 32-byte store and copied with 16-byte loads that straddle it, made
 // every ray wait for its stores, 11% of the time of a 32-triangle mesh's eye rays.)
-static RT_INLINE void MakeNodeRay(const Ray *ray, real tMin, const real inverses[3],
-                                  const BvhNode *anyNode, NodeRay *r) {
+static RT_INLINE void MakeNodeRay(const Ray *ray, real tMin, const BvhNode *anyNode, NodeRay *r) {
     const real origin[3] = {ray->origin.x, ray->origin.y, ray->origin.z};
+    const real dir[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
     Quad negativeZero;
     SplatQuad(&negativeZero, -real(0)); // the sign bit alone
     for (int i = 0; i < 3; i++) {
-        real inverse = inverses[i]; // 1 / dir[i] (Inverses, kernel.cpp)
+        real inverse = 1 / dir[i];
         SplatQuad(&r->origin[i], origin[i]), SplatQuad(&r->inverse[i], inverse);
         const char *node = (const char *)anyNode; // (every node has its arrays at the same places)
         size_t lo = (const char *)anyNode->lo[i] - node, hi = (const char *)anyNode->hi[i] - node;
@@ -186,7 +186,7 @@ static RT_INLINE bool WalkTree(const SceneLayout *layout, Search *s, RayHit *hit
     Pending stack[3 * kMaxDepth + kWidth];
     int top = 0;
     NodeRay r;
-    MakeNodeRay(s->ray, s->tMin, s->inverse, &layout->nodes[0], &r);
+    MakeNodeRay(s->ray, s->tMin, &layout->nodes[0], &r);
     const BvhNode *nodes = layout->nodes.data();
     Quad tMax; // s->tMax in every lane, kept up to date as hits shrink it
     SplatQuad(&tMax, s->tMax);
