@@ -293,17 +293,21 @@ static void SetUpAll(const std::vector<Triangle> &triangles, SceneLayout *layout
 template <typename Step> static void Help(const Step *step) { (*step)(); }
 
 // Runs `first` on this thread and `second` on another, when `threads`, and returns when both
-// are done; else, or if the system gives no thread, one after the other.
+// are done; else, or if the system gives no thread, one after the other. `first` must never
+// wait for `second`.
 template <typename First, typename Second>
 static void RunBoth(bool threads, const First &first, const Second &second) {
     std::thread helper;
     try {
         if (threads)
             helper = std::thread(Help<Second>, &second);
-    } catch (const std::system_error &) { // (no thread to be had: both here, below)
+    } catch (const std::exception &) { // no thread to be had (a limit on threads or memory)
     }
     first();
-    helper.joinable() ? helper.join() : second();
+    if (helper.joinable())
+        helper.join();
+    else // (first never waits for second, so one after the other is safe)
+        second();
 }
 
 // Once the tree is built: the leaves' blocks numbered and filled, and the four-wide tree.

@@ -25,7 +25,7 @@
 #include "kernel_packet.h"
 #include "kernel_walk.h"
 
-// 1 / d on each axis, as SlabInterval divides (each lane rounds as the scalar division does),
+// 1 / d on each axis, as MakeSlabRay divides (each lane rounds as the scalar division does),
 // for OutOfReach: one vector division, made every search. (Behind a branch on whether the search
 // needs them, they cost the Cornell box 3% of its time; and built in memory, its three numbers
 // stored one by one and read back as one vector, which waits for the stores, another 3%.)

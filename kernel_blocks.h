@@ -160,12 +160,17 @@ struct Search {
 // A triangle whose window (plane.cpp) lies wholly at or beyond `limit`, or at or before tMin:
 // it cannot be hit, since every hit lies in its triangle's window, and the window lies inside
 // the box's slab on any one axis (SlabInterval, whose steps on each axis are these, with the
-// same rounding). The axis is the one across which the triangle is flat (TriangleSetUp::flat):
-// there the slab is thinnest, a narrow band of t around where the line crosses the plane, so a
-// triangle crossed behind the origin or beyond the nearest hit is refused for about a tenth of
-// the plane test it saves: the ceiling behind a lamp that a shadow ray aims at, the wall behind
-// a ray that leaves a sphere. (The ray's main axis, tried first, let most of them through: on
-// the Cornell box 206,505 plane tests for 74,438 hits; across the flat axis 75,113.)
+// same rounding). The axis is the one the triangle's plane most nearly faces
+// (TriangleSetUp::flat): a wall facing an axis has no thickness there, so its slab is a narrow
+// band of t around where the line crosses it, and a triangle crossed behind the origin or beyond
+// the nearest hit is refused for about a tenth of the plane test it saves: the ceiling behind a
+// lamp that a shadow ray aims at, the wall behind a ray that leaves a sphere. (The ray's main
+// axis, tried first, let most of them through: on the Cornell box 206,505 plane tests for 74,438
+// hits; across the flat axis 75,113.) Along an axis the ray does not move on (d = 0, 1/d
+// infinite) the slab is everything or nothing, as it is in SlabInterval: the line stays at o
+// there, and a NaN (o exactly on the widened face) refuses nothing. A 1/d that overflows from a
+// tiny d moves the line far less along that axis than the pad, since ScaleRay keeps the largest |d|
+// near 1.
 static RT_INLINE bool OutOfReach(const Box *box, int axis, const Search *s, real limit) {
     real pad = kBoxAllowance * box->size + s->originPad, first, last;
     SlabEnds(box->lo[axis], box->hi[axis], pad, Component(s->ray->origin, axis), s->inverse[axis],

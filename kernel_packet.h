@@ -213,7 +213,8 @@ static RT_INLINE void PlaneHits(const Scene *scene, int index, unsigned rays, co
 }
 
 // The triangles, block by block and lane by lane (scene order in a list layout), after the
-// spheres: TestBlocks' survivor step for each ray that survives, with its own interval.
+// spheres: TestBlocks' survivor step for each ray that survives, with its own interval (OutOfReach
+// is not tried here).
 template <int kz>
 static RT_INLINE void PacketTriangles(const Scene *scene, const PacketLanes *l, PacketSearch *p) {
     const RayPacket *q = p->packet;

@@ -31,12 +31,12 @@ static RT_INLINE void Fill(Lanes *v, real x) {
 }
 
 // The ray's six numbers are read one at a time (`volatile` keeps each load whole and apart):
-// GCC would read them as one 32-byte vector, which cannot be taken from the caller's stores of
-// them, a moment before, until they reach the cache (2% of the Cornell box's time, where every
-// search starts here).
+// GCC would read them as one vector, which cannot be taken from the caller's stores of them, a
+// moment before, until they reach the cache (2% of the Cornell box's time, where every search
+// starts here).
 static RT_INLINE void SplatSphereRay(const Ray *ray, SphereLaneRay *r) {
-    const volatile real *p = &ray->origin.x, *q = &ray->dir.x;
-    vec3 o = {p[0], p[1], p[2]}, d = {q[0], q[1], q[2]};
+    const volatile vec3 &origin = ray->origin, &dir = ray->dir;
+    vec3 o = {origin.x, origin.y, origin.z}, d = {dir.x, dir.y, dir.z};
     Fill(&r->ox, o.x), Fill(&r->oy, o.y), Fill(&r->oz, o.z);
     Fill(&r->dx, d.x), Fill(&r->dy, d.y), Fill(&r->dz, d.z);
     Fill(&r->a, Dot(d, d));

@@ -38,14 +38,14 @@ struct Box {
 // committed scene keeps one for each triangle (SceneLayout); the plain loop makes it as it goes.
 struct TriangleSetUp {
     Box box;
-    int scale;        // the edges are multiplied by 2^scale before their cross product
-    dvec3 n;          // (b - a) 2^scale x (c - a) 2^scale, rounded
-    dvec3 nError;     // per component of n, a bound on its rounding error
-    bool normalKnown; // nError small against n: the first half of FirstOrderHolds (plane.cpp)
-    char flat;        // the axis of n's largest component, across which the box is thinnest
-    vec3 normal;      // n / |n|, for shading
-    bool hasArea;     // n is neither 0 nor beyond the range of numbers
-    real awayShare;   // for RayHit::awayShare: > 0 where normalKnown, else 0
+    int scale;          // the edges are multiplied by 2^scale before their cross product
+    dvec3 n;            // (b - a) 2^scale x (c - a) 2^scale, rounded
+    dvec3 nError;       // per component of n, a bound on its rounding error
+    bool normalKnown;   // nError small against n: the first half of FirstOrderHolds (plane.cpp)
+    unsigned char flat; // the axis of n's largest component: the one the plane most nearly faces
+    vec3 normal;        // n / |n|, for shading
+    bool hasArea;       // n is neither 0 nor beyond the range of numbers
+    real awayShare;     // for RayHit::awayShare: > 0 where normalKnown, else 0
 };
 
 struct TriangleBlock {

@@ -314,8 +314,8 @@ color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *p
 color TraceFoundPath(const Scene *scene, const RenderSettings *settings, const Ray *primary,
                      bool foundFirst, const RayHit *firstHit, int i, int j, int s, TraceLog *log) {
     PathSample sample = PathKey(settings->path.seed, i, j, s);
-    // Set member by member: written as one aggregate, the whole struct was first cleared by a
-    // `rep stos`, whose start-up cost half a percent of the Cornell box's time
+    // Set member by member (a member added to Path must be set here too): written as one
+    // aggregate, the whole struct was first cleared by a `rep stos`, slow to start, once a path.
     Path path;
     path.scene = scene, path.settings = settings, path.log = log;
     path.sample = sample, path.bounce = 0, path.light = {0, 0, 0}, path.through = {1, 1, 1};

@@ -183,7 +183,8 @@ void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp) {
                     std::fabs(xy) + std::fabs(yx)};
     dvec3 e = setUp->nError = Scale(GammaD(5), nTerms);
     double largest = std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
-    setUp->flat = (char)DominantAxis({(real)n.x, (real)n.y, (real)n.z});
+    dvec3 size = AbsD(n); // (in double: n as float may overflow or vanish)
+    setUp->flat = size.x > size.y ? (size.x > size.z ? 0 : 2) : (size.y > size.z ? 1 : 2);
     setUp->normalKnown = std::max({e.x, e.y, e.z}) <= kFirstOrderShare * largest;
     // How plainly a ray must go away from the triangle to pass over it (PassesOver, robust.h):
     // the unit normal leans from the exact one by at most 2 |n - n*| / |n| <= 2 sum nError_i /

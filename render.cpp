@@ -360,7 +360,7 @@ void Render(const Scene *scene, const RenderSettings *requested, Image *image, R
     for (int k = 1; k < threads; k++) {
         try {
             workers.emplace_back(RenderWorker, scene, settings, &queue, image, &perThread[k]);
-        } catch (const std::system_error &) { // the system gives no more threads (a limit on
+        } catch (const std::exception &) { // the system gives no more threads (a limit on
             break; // threads or on memory): the rows are shared, so fewer render the same bytes
         }
     }

@@ -180,6 +180,52 @@ static void TestSameHitsInLongBoxes() {
         }
 }
 
+// The reach test (OutOfReach, kernel_blocks.h) across the axis a wall faces, where a ray moves
+// along that axis not at all (a direction component of 0, so 1/d is infinite), barely (the
+// smallest subnormal, 1/d overflowing), or little (1e-30): rays along and across a closed box and
+// two inner walls facing x and z, from inside it and from points on its faces and edges, with the
+// search cut at each hit's own t (a tie: no hit), one number past it, and starting at it. The same
+// bits in every layout (the plain loop never tries the test).
+static void TestReachAcrossFlatAxes() {
+    Scene box = BoxScene(8, false);
+    auto wall = [&box](vec3 a, vec3 b, vec3 c, vec3 d) {
+        box.triangles.push_back({a, b, c, 0});
+        box.triangles.push_back({a, c, d, 0});
+    };
+    wall({-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}); // facing z
+    wall({real(0.5), -1, -2}, {real(0.5), 1, -2}, {real(0.5), 1, 2}, {real(0.5), -1, 2}); // x
+    Layouts l;
+    MakeLayouts(box, &l);
+    const vec3 origins[] = {{0, 0, 0},         {2, 0, 0},           {-2, real(1.5), 0},
+                            {real(0.5), 0, 1}, {1, real(-1.5), -3}, {0, 0, 1}};
+    const real small[] = {0, std::numeric_limits<real>::denorm_min(), real(1e-30)};
+    int differ = 0, hits = 0, asked = 0;
+    for (vec3 o : origins)
+        for (real e : small)
+            for (int axis = 0; axis < 3; axis++)
+                for (real sign : {real(1), real(-1)}) {
+                    vec3 d = {e, e, e}; // one axis of 1, the others 0 or tiny
+                    d = axis == 0   ? vec3{sign, e, -e}
+                        : axis == 1 ? vec3{e, sign, e}
+                                    : vec3{-e, e, sign};
+                    for (vec3 dir : {d, vec3{d.x + d.y, d.y + d.z, d.z + d.x}}) { // and diagonals
+                        Ray ray = {o, dir};
+                        RayHit hit;
+                        differ += !SameAnswers(&l, &ray, 0, kInfinity), asked++;
+                        if (!FindNearestHit(&l.plain, kRobustMethods, &ray, 0, kInfinity, &hit))
+                            continue;
+                        hits++;
+                        differ += !SameAnswers(&l, &ray, 0, hit.t);
+                        differ += !SameAnswers(&l, &ray, 0, NextAfter(hit.t, true));
+                        differ += !SameAnswers(&l, &ray, hit.t, kInfinity);
+                        asked += 3;
+                    }
+                }
+    CHECK(hits > asked / 8, "the axis rays meet the walls");
+    CHECK(differ == 0, "rays along the axes the walls face, with and without cut intervals: "
+                       "the same bits in every layout");
+}
+
 // Ties: a flat grid of 2,048 triangles in shuffled scene order, and rays through its corners
 // and edge midpoints, each of which lies on two to six triangles at exactly the same t. The
 // list keeps the earliest in the scene (a later one must be strictly nearer); the BVH meets them
@@ -403,6 +449,7 @@ void TestLayout() {
     TestSameHitsEveryLayout();
     TestPassOverIsExact();
     TestSameHitsInLongBoxes();
+    TestReachAcrossFlatAxes();
     TestTiesGoToTheEarlierTriangle();
     TestHardCasesCommitted();
     TestSameImages();

@@ -44,7 +44,7 @@ int RunRay(const std::string &dir, const std::string &args, std::string *stderrT
 }
 
 // A render that asks for more threads than the system gives (here 1,024 under a limit of 400 MB
-// of address space, where each thread's stack alone reserves 8 MB) goes on with those it has:
+// of address space, where each thread's stack of 8 MB alone needs 8 GB) goes on with those it has:
 // the same bytes as one thread, no abort. (Not under the address sanitizer, whose own
 // reservations no such limit allows.)
 #if defined(__SANITIZE_ADDRESS__)
@@ -58,8 +58,8 @@ static void TestThreadsRefused(const std::string &dir) {
 #ifndef RT_ADDRESS_SANITIZER
     std::string err;
     int one = RunRay(dir, "--threads 1 --size 8x1024 -o one.png", &err);
-    int many =
-        RunRayAfter(dir, "ulimit -v 400000 &&", "--threads 1024 --size 8x1024 -o many.png", &err);
+    int many = RunRayAfter(dir, "ulimit -s 8192 && ulimit -v 400000 &&",
+                           "--threads 1024 --size 8x1024 -o many.png", &err);
     CHECK(one == 0 && many == 0 && ReadFile(dir + "/many.png") == ReadFile(dir + "/one.png"),
           "--threads 1024 under a 400 MB limit: the threads there are, the same bytes (" + err +
               ")");
