@@ -204,10 +204,9 @@ static void TestReachAcrossFlatAxes() {
         for (real e : small)
             for (int axis = 0; axis < 3; axis++)
                 for (real sign : {real(1), real(-1)}) {
-                    vec3 d = {e, e, e}; // one axis of 1, the others 0 or tiny
-                    d = axis == 0   ? vec3{sign, e, -e}
-                        : axis == 1 ? vec3{e, sign, e}
-                                    : vec3{-e, e, sign};
+                    vec3 d = axis == 0   ? vec3{sign, e, -e} // one axis of 1, the others 0
+                             : axis == 1 ? vec3{e, sign, e}  // or tiny
+                                         : vec3{-e, e, sign};
                     for (vec3 dir : {d, vec3{d.x + d.y, d.y + d.z, d.z + d.x}}) { // and diagonals
                         Ray ray = {o, dir};
                         RayHit hit;
