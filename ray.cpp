@@ -87,12 +87,13 @@ static void PrintLayout(const Scene *scene, double commitSeconds) {
             layout->wide ? "blocks tested in AVX2 vectors" : "blocks tested lane by lane");
 }
 
-static void PrintStats(const RayStats *s, const RenderSettings *settings, double renderSeconds,
-                       double totalSeconds) {
+// (`threads`: the threads that rendered, which may be fewer than --threads asked for.)
+static void PrintStats(const RayStats *s, const RenderSettings *settings, int threads,
+                       double renderSeconds, double totalSeconds) {
     uint64_t total = s->primary + s->shadow + s->reflection + s->refraction + s->diffuse;
     fprintf(stderr, "image: %dx%d, %d spp, depth %d, %d thread%s\n", settings->width,
-            settings->height, settings->samplesPerPixel, settings->depth, settings->threads,
-            settings->threads == 1 ? "" : "s");
+            settings->height, settings->samplesPerPixel, settings->depth, threads,
+            threads == 1 ? "" : "s");
     fprintf(stderr, "time: render %.4f s, whole process %.4f s\n", renderSeconds, totalSeconds);
     fprintf(stderr,
             "rays: primary=%llu shadow=%llu reflection=%llu refraction=%llu diffuse=%llu "
@@ -312,10 +313,11 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
     Image image;
     RayStats stats = {};
     auto renderStart = std::chrono::steady_clock::now();
+    int threads = 1; // (RenderView draws on one thread)
     if (opt->view)
         RenderView(scene, settings, opt->viewKind, &image, &stats);
     else
-        Render(scene, settings, &image, &stats);
+        threads = Render(scene, settings, &image, &stats);
     double renderSeconds = SecondsSince(renderStart);
     if (!WriteImage(output.c_str(), &image, &error)) {
         Complain(error);
@@ -323,7 +325,7 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
     }
     if (opt->stats) {
         PrintLayout(scene, commitSeconds);
-        PrintStats(&stats, settings, renderSeconds, SecondsSince(start));
+        PrintStats(&stats, settings, threads, renderSeconds, SecondsSince(start));
     }
     return 0;
 }

@@ -344,7 +344,7 @@ static RenderProgress Progress(const RowQueue *queue, int height, double seconds
     return {done, rays / seconds, left, false};
 }
 
-void Render(const Scene *scene, const RenderSettings *requested, Image *image, RayStats *stats) {
+int Render(const Scene *scene, const RenderSettings *requested, Image *image, RayStats *stats) {
     // Plan a copy for this scene, so settings planned for another scene can do no harm
     RenderSettings planned = *requested;
     PlanRender(scene, &planned);
@@ -389,4 +389,5 @@ void Render(const Scene *scene, const RenderSettings *requested, Image *image, R
 
     for (const RayStats &s : perThread)
         AddStats(&s, stats);
+    return 1 + (int)workers.size();
 }

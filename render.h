@@ -215,9 +215,10 @@ color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *p
 // need (PlanEffects) and the camera prepared for settings->width x settings->height.
 void PlanRender(const Scene *scene, RenderSettings *settings);
 
-// Renders every pixel on settings->threads threads into *image; adds the rays cast to *stats.
-// Plans its own copy of the settings for this scene (PlanRender).
-void Render(const Scene *scene, const RenderSettings *settings, Image *image, RayStats *stats);
+// Renders every pixel on at most settings->threads threads into *image; adds the rays cast to
+// *stats. Plans its own copy of the settings for this scene (PlanRender). Returns the number of
+// threads that rendered: no more than the image has rows, or than the system would start.
+int Render(const Scene *scene, const RenderSettings *settings, Image *image, RayStats *stats);
 
 // The colour of pixel (i, j): the average of its samples, before clamping. `settings` must have
 // been planned for this scene (PlanRender).

@@ -89,6 +89,11 @@ static void TestDefaultRun(const std::string &dir) {
           "--stats prints the rays: line as docs/command-line.md shows it");
     CHECK(err.find("\neffects: shadows reflection\n") != std::string::npos,
           "--stats: the assignment scene uses shadows and reflection, nothing else");
+    CHECK(err.find("image: 512x512, 1 spp, depth 10, 1 thread\n") != std::string::npos,
+          "--stats --threads 1: 'image: 512x512, 1 spp, depth 10, 1 thread'");
+    status = RunRay(dir, "--threads 8 --size 6x3 --stats -o rows.png", &err);
+    CHECK(status == 0 && err.find("image: 6x3, 1 spp, depth 10, 3 threads\n") != std::string::npos,
+          "--stats says the threads that rendered: 3 for 3 rows, though --threads 8 (" + err + ")");
 
     std::string oneThread = ReadFile(dir + "/reference.png");
     status = RunRay(dir, "--threads 2 -o two.png", &err);
