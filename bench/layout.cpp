@@ -4,8 +4,10 @@
 // The mesh is a closed sphere of 8 * 4^level triangles (a subdivided octahedron), lit by one
 // point light and seen whole, 256 x 256, one sample a pixel, one thread: primary and shadow
 // rays. Each time is the median of kRounds renders, the list and the BVH taken in turn so both
-// see the same machine load; min and max are printed beside it. Writes DIR/layout.md (the
-// table) and DIR/layout.svg (the log-log plot).
+// see the same machine load; min and max are printed beside it. Beside the build's time: the
+// committed layout's size, and what its memory costs to touch for the first time on this machine
+// (a floor under any build that writes it). Writes DIR/layout.md (the table) and DIR/layout.svg
+// (the log-log plot).
 #include "../render.h"
 #include "ray.h"
 #include "svg.h"
@@ -14,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -83,7 +86,37 @@ static void TimeRender(const Scene *scene, Timing *timing) {
 struct Row {
     size_t triangles;
     Timing commit, list, tree; // the BVH build; the two renders
+    size_t layoutBytes;        // the BVH layout's arrays: blocks, nodes, set-ups, sphere blocks
 };
+
+// The bytes a committed layout's arrays hold (their capacity: what was allocated and written).
+static size_t LayoutBytes(const SceneLayout *l) {
+    return l->blocks.capacity() * sizeof(TriangleBlock) + l->nodes.capacity() * sizeof(BvhNode) +
+           l->setUps.capacity() * sizeof(TriangleSetUp) +
+           l->sphereBlocks.capacity() * sizeof(SphereBlock);
+}
+
+// What this machine takes to give a process a fresh 4 KB page, in microseconds: a 64 MB buffer,
+// new each pass, written a byte a page; the median of 5 passes. Measured before anything large
+// has been freed: glibc's malloc takes a buffer this size from the system (mmap) and gives it
+// back when freed, so every pass gets pages the process never had, unless a free piece of its
+// heap is as large. (The writes are volatile, so the compiler cannot drop them.) A build writes
+// its layout into such pages.
+static double FreshPageMicroseconds() {
+    const size_t kBytes = (size_t)64 << 20, kPage = 4096;
+    std::vector<double> us;
+    for (int pass = 0; pass < 5; pass++) {
+        std::unique_ptr<char[]> buffer(new char[kBytes]);
+        volatile char *bytes = buffer.get();
+        auto start = std::chrono::steady_clock::now();
+        for (size_t i = 0; i < kBytes; i += kPage)
+            bytes[i] = 1;
+        std::chrono::duration<double, std::micro> t = std::chrono::steady_clock::now() - start;
+        us.push_back(t.count() / (double)(kBytes / kPage));
+    }
+    std::sort(us.begin(), us.end());
+    return us[us.size() / 2];
+}
 
 static Row MeasureRow(int level) {
     Row row;
@@ -96,6 +129,7 @@ static Row MeasureRow(int level) {
         std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - start;
         row.commit.ms.push_back(ms.count());
     }
+    row.layoutBytes = LayoutBytes(&tree.layout);
     CommitScene(&list, LAYOUT_LIST);
     for (int round = 0; round < kRounds; round++) { // in turn: the same load for both
         if (row.triangles <= kMostForList)
@@ -181,6 +215,7 @@ static void WritePlot(const std::vector<Row> &rows, const std::string &path) {
 }
 
 int LayoutTable(const char *folder) {
+    double pageUs = FreshPageMicroseconds(); // (first: later, freed layouts may serve the buffer)
     std::vector<Row> rows;
     for (int level : kLevels)
         rows.push_back(MeasureRow(level));
@@ -188,13 +223,19 @@ int LayoutTable(const char *folder) {
     FILE *md = fopen(path.c_str(), "w");
     if (!md)
         return 3;
-    fprintf(md,
-            "| triangles | BVH build ms | list render ms | BVH render ms | rays | BVH Mrays/s |\n"
-            "|---:|---:|---:|---:|---:|---:|\n");
+    fprintf(md, "| triangles | BVH build ms | layout MB | its first touch, CPU ms | list render ms "
+                "| BVH render ms | rays | BVH Mrays/s |\n"
+                "|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const Row &r : rows)
-        fprintf(md, "| %zu | %s | %s | %s | %llu | %.2f |\n", r.triangles, Cell(r.commit).c_str(),
+        fprintf(md, "| %zu | %s | %.1f | %.1f | %s | %s | %llu | %.2f |\n", r.triangles,
+                Cell(r.commit).c_str(), r.layoutBytes / 1e6, r.layoutBytes / 4096.0 * pageUs / 1e3,
                 Cell(r.list).c_str(), Cell(r.tree).c_str(), (unsigned long long)r.tree.rays,
                 r.tree.rays / r.tree.Median() / 1e3);
+    fprintf(md,
+            "\nA fresh 4 KB page costs this machine %.2f us (a new 64 MB buffer written a byte a "
+            "page, median of 5): \"its first touch\" is the layout's pages at that price, CPU time "
+            "that any build writing that layout spends, on whichever threads write it.\n",
+            pageUs);
     fclose(md);
     WritePlot(rows, std::string(folder) + "/layout.svg");
     return 0;
