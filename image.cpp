@@ -28,7 +28,8 @@
 // the assignment image's flat colours still compress well.
 static const png_uint_32 kPngFlags = PNG_IMAGE_FLAG_FAST;
 
-// The image as PNG on an open file.
+// The image as PNG on an open file. Where the file could not be written, the system's reason (a
+// full disk, a pipe whose reader has gone) rather than libpng's "Write Error".
 static bool EncodePng(FILE *file, const Image *image, std::string *error) {
     png_image png;
     memset(&png, 0, sizeof png);
@@ -37,9 +38,10 @@ static bool EncodePng(FILE *file, const Image *image, std::string *error) {
     png.height = (png_uint_32)image->height;
     png.format = PNG_FORMAT_RGB;
     png.flags = kPngFlags;
+    errno = 0;
     bool written = png_image_write_to_stdio(&png, file, 0, image->pixels.data(), 0, nullptr) != 0;
     if (!written)
-        *error = png.message;
+        *error = ferror(file) && errno != 0 ? strerror(errno) : png.message;
     png_image_free(&png);
     return written;
 }
@@ -73,11 +75,74 @@ static bool IsSpecial(const std::string &path, const struct stat *info) {
            path.compare(0, 8, "/dev/fd/") == 0 || path.compare(0, 14, "/proc/self/fd/") == 0;
 }
 
+// The file a path names (*file), following symbolic links, also one whose target does not exist
+// yet (a dangling link is followed to where its target will be made). False after 40 links, the
+// system's own limit: a loop of links (a -> b -> a), which names no file at all.
+static bool LinkTarget(std::string path, std::string *file) {
+    for (int depth = 0; depth <= 40; depth++) {
+        char target[PATH_MAX];
+        ssize_t n = readlink(path.c_str(), target, sizeof target - 1);
+        if (n < 0) {
+            *file = path;
+            return true;
+        }
+        target[n] = 0;
+        std::string next = target;
+        size_t slash = path.find_last_of('/');
+        path =
+            next[0] == '/' || slash == std::string::npos ? next : path.substr(0, slash + 1) + next;
+    }
+    return false;
+}
+
+// The folder that holds `file` ("dir/" of "dir/a.png", "./" of "a.png"), where the image's
+// temporary file is made.
+static std::string FolderOf(const std::string &file) {
+    size_t slash = file.find_last_of('/');
+    return slash == std::string::npos ? "./" : file.substr(0, slash + 1);
+}
+
+// Why no new file can be made in `folder`, as an errno value (it is missing, not a folder, or
+// may not be written), or 0 when one can.
+static int FolderProblem(const std::string &folder) {
+    struct stat info;
+    if (stat(folder.c_str(), &info) != 0)
+        return errno;
+    if (!S_ISDIR(info.st_mode))
+        return ENOTDIR;
+    return access(folder.c_str(), W_OK | X_OK) == 0 ? 0 : errno;
+}
+
+// Where a regular file's image will go (WriteImage): the file its links lead to, and a new file in
+// that file's folder. False with *error (exit 3) where either cannot be.
+static bool CanReplace(const std::string &output, std::string *error) {
+    std::string file;
+    if (!LinkTarget(output, &file)) {
+        *error = output + ": " + strerror(ELOOP);
+        return false;
+    }
+    std::string folder = FolderOf(file);
+    int why = FolderProblem(folder);
+    if (why == 0)
+        return true;
+    *error = output + ": " + strerror(why);
+    if (why == EACCES || why == EROFS) // (the file itself may be writable: not enough)
+        *error +=
+            " (in " + folder + ", where the image is written before it is renamed into place)";
+    return false;
+}
+
 bool CheckOutputPath(const std::string &output, const std::vector<std::string> &inputs, int *status,
                      std::string *error) {
     struct stat out;
+    errno = 0;
     bool exists = stat(output.c_str(), &out) == 0;
     *status = 2;
+    if (!exists && errno == ELOOP) { // a loop of links: no file to write, and none to make
+        *status = 3;
+        *error = output + ": " + strerror(ELOOP);
+        return false;
+    }
     if (exists && S_ISDIR(out.st_mode)) {
         *status = 3;
         *error = output + ": Is a directory";
@@ -102,6 +167,10 @@ bool CheckOutputPath(const std::string &output, const std::vector<std::string> &
     if (exists && !special && (access(output.c_str(), W_OK) != 0 || (out.st_mode & 0222) == 0)) {
         *status = 3;
         *error = output + ": Permission denied";
+        return false;
+    }
+    if (!special && !CanReplace(output, error)) {
+        *status = 3;
         return false;
     }
     return true;
@@ -158,23 +227,6 @@ static bool WriteSpecial(const std::string &path, const Image *image, std::strin
     return written;
 }
 
-// The file a path names, following symbolic links, also one whose target does not exist yet
-// (a dangling link is followed to where its target will be made). At most 40 links deep.
-static std::string LinkTarget(std::string path) {
-    for (int depth = 0; depth < 40; depth++) {
-        char target[PATH_MAX];
-        ssize_t n = readlink(path.c_str(), target, sizeof target - 1);
-        if (n < 0)
-            return path;
-        target[n] = 0;
-        std::string next = target;
-        size_t slash = path.find_last_of('/');
-        path =
-            next[0] == '/' || slash == std::string::npos ? next : path.substr(0, slash + 1) + next;
-    }
-    return path;
-}
-
 // Writes the image into a new temporary file (*temporary, made from its pattern) with the mode
 // the file it will replace has (`mode`); false with *why. mkstemp makes a file readable by its
 // owner only, hence the chmod.
@@ -210,9 +262,12 @@ bool WriteImage(const char *path, const Image *image, std::string *error) {
         return WriteSpecial(path, image, error);
 
     // A symbolic link is followed: the file it points to is replaced (or made), the link stays
-    std::string target = LinkTarget(path), why;
-    std::string folder = target.substr(0, target.find_last_of('/') + 1);
-    std::string temporary = folder + ".ray-XXXXXX"; // short: any name that fits, fits beside it
+    std::string target, why;
+    if (!LinkTarget(path, &target)) {
+        *error = std::string(path) + ": " + strerror(ELOOP);
+        return false;
+    }
+    std::string temporary = FolderOf(target) + ".ray-XXXXXX"; // short: if the name fits, this does
     mode_t mask = umask(0);
     umask(mask);
     sigset_t previous;

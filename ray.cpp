@@ -7,6 +7,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -191,6 +192,10 @@ static int Probe(const Options *opt, const Scene *scene, const RenderSettings *s
             status = 2;
         } else if (!blank) {
             printf("%s\n", ProbeRayJson(scene, settings, &ray).c_str());
+        }
+        if (ferror(stdout)) { // no one reads the answers any more, or the disk is full
+            Complain(std::string("standard output: ") + strerror(errno));
+            return 3;
         }
     }
     if (!fromStdin)
@@ -378,11 +383,32 @@ static int Run(int argc, char **argv) {
 
 // An allocation that fails (a scene of millions of shapes under a memory limit, an image of
 // 16384 x 16384 on a small machine) is an error message and exit 2, never an abort.
+// Whether all that was printed reached standard output; false with *why where some could not
+// be written (a pipe whose reader has gone, a full disk).
+static bool OutputWritten(std::string *why) {
+    errno = 0;
+    if (fflush(stdout) == 0 && !ferror(stdout))
+        return true;
+    *why = errno != 0 ? strerror(errno) : "write error";
+    return false;
+}
+
 int main(int argc, char **argv) {
+    // A reader that goes away (`ray --rays - | head -1`) is an error to report, not a signal
+    // that ends the program: with SIGPIPE ignored, a write to the closed pipe fails instead
+    // (EPIPE), and the run ends with exit 3.
+    std::signal(SIGPIPE, SIG_IGN);
+    int status;
     try {
-        return Run(argc, argv);
+        status = Run(argc, argv);
     } catch (const std::bad_alloc &) {
         Complain("out of memory");
         return 2;
     }
+    std::string why;
+    if (status != 3 && !OutputWritten(&why)) { // (3: an output error, said already)
+        Complain("standard output: " + why);
+        return 3;
+    }
+    return status;
 }

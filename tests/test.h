@@ -53,7 +53,9 @@ bool SameHit(const RayHit &a, const RayHit &b);
 double ShareAlike(const Image &a, const Image &b);
 
 // The program under test for command-line checks: $RAY, or ./ray (./ray_float in the float build).
+// RayPath: the same as an absolute path, for commands run in another directory.
 std::string RayProgram();
+std::string RayPath();
 
 // A fresh directory /tmp/rt-NAME-XXXXXX for a group's program tests, checked; "" if none could be
 // made (the group then returns). RemoveTestDir deletes it with its contents, checked.

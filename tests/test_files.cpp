@@ -136,6 +136,74 @@ static void TestSpecialOutputs(const std::string &dir) {
     CHECK(NoTemporaryFiles(dir), "no temporary file is left behind");
 }
 
+// Where the output cannot be made, the run says so before it renders, with exit 3, and changes
+// nothing: a loop of symbolic links (which names no file: replacing one link of it would lose
+// it), a folder that does not exist, a file used as a folder, and (for a user other than root,
+// whom the system lets write anywhere) a folder that may not be written, though the file in it
+// may: the image is made beside the output and renamed over it. "Before it renders": the render
+// asked for (16384 x 16384 pixels at 65536 samples) would outlast the 30 s of CPU the shell
+// allows it, and a run stopped by that limit gives no exit 3.
+static void TestOutputFolders(const std::string &dir) {
+    std::string err;
+    const std::string big = "my.scene --size 16384 --spp 65536 -o ";
+    auto refused = [&](const std::string &output) {
+        return RunRayAfter(dir, "ulimit -t 30 &&", big + output, &err) == 3;
+    };
+    int a = symlink("loop-b.png", (dir + "/loop-a.png").c_str());
+    int b = symlink("loop-a.png", (dir + "/loop-b.png").c_str());
+    int self = symlink("self.png", (dir + "/self.png").c_str());
+    struct stat info;
+    CHECK(a == 0 && b == 0 && refused("loop-a.png") &&
+              err.find("loop-a.png: Too many levels of symbolic links") != std::string::npos &&
+              lstat((dir + "/loop-a.png").c_str(), &info) == 0 && S_ISLNK(info.st_mode) &&
+              lstat((dir + "/loop-b.png").c_str(), &info) == 0 && S_ISLNK(info.st_mode),
+          "a loop of two symbolic links as the output: exit 3 before the render, both links kept "
+          "(" +
+              err + ")");
+    CHECK(self == 0 && refused("self.png") && lstat((dir + "/self.png").c_str(), &info) == 0 &&
+              S_ISLNK(info.st_mode),
+          "a symbolic link to itself as the output: exit 3 before the render, the link kept");
+    CHECK(refused("no-such-folder/x.png") &&
+              err.find("no-such-folder/x.png: No such file or directory") != std::string::npos,
+          "an output in a folder that does not exist: exit 3 before the render (" + err + ")");
+    CHECK(refused("my.scene/x.png") && err.find("Not a directory") != std::string::npos &&
+              ReadFile(dir + "/my.scene") == kSmallScene,
+          "an output 'in' a file (my.scene/x.png): exit 3 before the render, the file untouched");
+    if (geteuid() == 0) // (root may write any folder: nothing to refuse)
+        return;
+    std::string folder = dir + "/shut";
+    mkdir(folder.c_str(), 0755);
+    Write(folder + "/open.png", "old");
+    chmod((folder + "/open.png").c_str(), 0666);
+    chmod(folder.c_str(), 0555);
+    CHECK(refused("shut/open.png") && err.find("where the image is written") != std::string::npos &&
+              ReadFile(folder + "/open.png") == "old",
+          "a writable file in a folder that may not be written: exit 3 before the render, "
+          "untouched, and why (" +
+              err + ")");
+    chmod(folder.c_str(), 0755);
+}
+
+// A reader that goes away early (`ray --rays many.txt | head -c 1`, an image to `-o /dev/stdout`
+// piped the same way) ends the run with exit 3 and "Broken pipe", not with the signal SIGPIPE.
+static void TestClosedPipe(const std::string &dir) {
+    std::string rays;
+    for (int k = 0; k < 20000; k++) // about 2 MB of answers: far more than a pipe holds
+        rays += "0 0 0 0 0 -1\n";
+    Write(dir + "/many.txt", rays);
+    for (const char *args : {"my.scene --rays many.txt", "my.scene --size 600 -o /dev/stdout"}) {
+        std::string command = "cd '" + dir + "' && ( '" + RayPath() + "' " + args +
+                              " 2>pipe-err.txt; echo $? >pipe-status.txt ) | head -c 1 >/dev/null";
+        int ignored = system(command.c_str());
+        (void)ignored;
+        std::string status = ReadFile(dir + "/pipe-status.txt"),
+                    err = ReadFile(dir + "/pipe-err.txt");
+        CHECK(status == "3\n" && err.find("Broken pipe") != std::string::npos,
+              std::string("`ray ") + args + " | head -c 1`: exit 3, `Broken pipe` (exit " + status +
+                  ", " + err + ")");
+    }
+}
+
 // SIGINT at moments spread over a run that writes a large image (before, during and after the
 // write): no temporary file remains, and the output is either as it was (and the run did not
 // succeed) or the complete new image.
@@ -216,6 +284,8 @@ void TestFiles() {
     TestOutputIsAnInput(dir);
     TestReadOnlyOutput(dir);
     TestSpecialOutputs(dir);
+    TestOutputFolders(dir);
+    TestClosedPipe(dir);
     TestInterruptedWrites(dir);
     TestFileSizeLimit(dir);
     TestOddInputs(dir);

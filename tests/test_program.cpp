@@ -24,16 +24,20 @@ std::string ReadFile(const std::string &path) {
 
 bool FileExists(const std::string &path) { return std::ifstream(path).good(); }
 
-int RunRayAfter(const std::string &dir, const std::string &pipe, const std::string &args,
-                std::string *stderrText) {
+std::string RayPath() {
     std::string program = RayProgram();
     if (program[0] != '/') {
         char *cwd = realpath(".", nullptr);
         program = std::string(cwd) + "/" + program;
         free(cwd);
     }
+    return program;
+}
+
+int RunRayAfter(const std::string &dir, const std::string &pipe, const std::string &args,
+                std::string *stderrText) {
     std::string command =
-        "cd '" + dir + "' && " + pipe + " '" + program + "' " + args + " >out.txt 2>err.txt";
+        "cd '" + dir + "' && " + pipe + " '" + RayPath() + "' " + args + " >out.txt 2>err.txt";
     int status = system(command.c_str());
     *stderrText = ReadFile(dir + "/err.txt");
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
