@@ -239,38 +239,46 @@ static bool NonzeroDigits(const std::string &t) {
     return false;
 }
 
+// The T nearest to a decimal token (LooksDecimal), rounded once: as strtod (or strtof) gives it,
+// by std::from_chars (which takes no '+', and is several times faster: a large mesh is mostly
+// numbers). Where from_chars does not read the whole token, or finds it out of range, strtod or
+// strtof reads it, and tells too large (infinity) from too small (0). A float is read as a float:
+// read as the nearest double and then rounded again, a decimal just past the midpoint of two
+// floats may land on it and round to the other one (1.00000005960464478 would be 1, not the
+// float after it). (Where the library does not declare from_chars for floating types
+// (__cpp_lib_to_chars), as libc++ may not, strtod or strtof alone: the same number, more slowly.)
+template <typename T> static T Nearest(const std::string &token) {
+#if defined(__cpp_lib_to_chars)
+    T v;
+    const char *first = token.data() + (token[0] == '+'), *last = token.data() + token.size();
+    std::from_chars_result read = std::from_chars(first, last, v);
+    if (read.ec == std::errc() && read.ptr == last)
+        return v;
+#endif
+    if constexpr (sizeof(T) == sizeof(float))
+        return strtof(token.c_str(), nullptr);
+    else
+        return strtod(token.c_str(), nullptr);
+}
+
 bool ParseReal(const std::string &token, real *value, std::string *error) {
     if (!LooksDecimal(token)) {
         *error = "not a decimal number: " + Shown(token);
         return false;
     }
-    // The nearest double, as strtod gives it, by std::from_chars (which takes no '+', and is
-    // several times faster: a large mesh is mostly numbers). Where from_chars does not read the
-    // whole token, or finds it out of range, strtod reads it, and tells too large (infinity)
-    // from too small (0) as before.
-    // (Where the library does not declare from_chars for double (__cpp_lib_to_chars), as libc++
-    // may not, strtod alone: the same double, more slowly.)
-    double v;
-#if defined(__cpp_lib_to_chars)
-    const char *first = token.data() + (token[0] == '+'), *last = token.data() + token.size();
-    std::from_chars_result read = std::from_chars(first, last, v);
-    if (read.ec != std::errc() || read.ptr != last)
-        v = strtod(token.c_str(), nullptr);
-#else
-    v = strtod(token.c_str(), nullptr);
-#endif
-    if (!std::isfinite(v) || !std::isfinite((real)v)) {
+    real v = Nearest<real>(token);
+    if (!std::isfinite(v)) {
         *error = "number out of range: " + Shown(token);
         return false;
     }
     // A number too small to be anything but 0 (1e-400; in float 1e-50) is refused as a number
     // too large is: read as 0, a radius of 1e-50 would be refused as "not > 0", and a direction
     // as "zero", for a number that is neither. (A nonzero digit before the exponent: not 0.)
-    if ((real)v == 0 && NonzeroDigits(token)) {
+    if (v == 0 && NonzeroDigits(token)) {
         *error = "number out of range (too small, it would be 0): " + Shown(token);
         return false;
     }
-    *value = (real)v;
+    *value = v;
     return true;
 }
 
@@ -284,7 +292,11 @@ bool ParseWholeNumber(const std::string &token, int lo, int hi, int *value, std:
         *error = "not a whole number: " + Shown(token);
         return false;
     }
-    long v = token.size() < 12 ? strtol(token.c_str(), nullptr, 10) : lo - 1L; // 12 digits: too big
+    // Leading zeros add nothing (0000064 is 64); past them, more than 10 digits is beyond any
+    // int, and strtoll could not hold 20
+    size_t first = token.find_first_not_of("+-0");
+    size_t digits = first == std::string::npos ? 0 : token.size() - first;
+    long long v = digits <= 10 ? strtoll(token.c_str(), nullptr, 10) : lo - 1LL;
     if (v < lo || v > hi) {
         *error = "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + ", not " +
                  Shown(token);

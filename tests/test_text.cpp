@@ -1,5 +1,6 @@
-// test_text.cpp -- reading text (text.cpp): numbers as strtod reads them, lines up to their
-// limit and at every line ending, and the hint for a slip of the keyboard.
+// test_text.cpp -- reading text (text.cpp): numbers as strtod (strtof in float) reads them, whole
+// numbers with leading zeros, lines up to their limit and at every line ending, and the hint for
+// a slip of the keyboard.
 #include "../io.h"
 #include "test.h"
 
@@ -8,10 +9,17 @@
 #include <cstdlib>
 #include <cstring>
 
-// Numbers are read as strtod reads them (ParseReal takes a faster road to the same double):
-// 20,000 decimal numbers of every form a scene file may hold, signs, no digits before or after
-// the point, long mantissas, exponents out to 1e-450 and 1e450, give the same bits, or are
-// refused exactly where strtod's answer is infinite or a nonzero number read as 0.
+// The number the C library reads from t: strtod's, or in float strtof's (rounded once).
+static real LibraryNumber(const std::string &t) {
+    if (sizeof(real) == sizeof(float))
+        return (real)strtof(t.c_str(), nullptr);
+    return (real)strtod(t.c_str(), nullptr);
+}
+
+// Numbers are read as strtod (strtof) reads them (ParseReal takes a faster road to the same
+// number): 20,000 decimal numbers of every form a scene file may hold, signs, no digits before
+// or after the point, long mantissas, exponents out to 1e-450 and 1e450, give the same bits, or
+// are refused exactly where the library's answer is infinite or a nonzero number read as 0.
 static void TestNumbersAsStrtod() {
     uint64_t state = 12345;
     auto next = [&state](int n) { // a number from 0 to n - 1 (a linear congruential generator)
@@ -35,10 +43,9 @@ static void TestNumbersAsStrtod() {
                              : next(2)    ? "+"
                                           : "") +
                  std::to_string(next(4) == 0 ? next(451) : next(40));
-        double d = strtod(t.c_str(), nullptr);
+        real r = LibraryNumber(t), v = 0;
         bool nonzero = t.find_first_of("123456789") < t.find_first_of("eE");
-        bool expected = std::isfinite((real)d) && !((real)d == 0 && nonzero);
-        real v = 0, r = (real)d;
+        bool expected = std::isfinite(r) && !(r == 0 && nonzero);
         std::string error;
         bool read = ParseReal(t, &v, &error);
         if (read != expected || (read && memcmp(&v, &r, sizeof v) != 0)) { // (-0 is not 0)
@@ -46,8 +53,37 @@ static void TestNumbersAsStrtod() {
                 first = t;
         }
     }
-    CHECK(differ == 0, "20,000 decimal numbers read as strtod reads them (" +
+    CHECK(differ == 0, "20,000 decimal numbers read as strtod (strtof) reads them (" +
                            std::to_string(differ) + " differ; the first: '" + first + "')");
+}
+
+// A number is rounded once, to the build's own type. 1 + 2^-24 + 2^-60 is just past the midpoint
+// of the floats 1 and 1 + 2^-23: as a float it is the latter, though the double nearest to it is
+// the midpoint itself, which would round (to even) to 1.
+static void TestRoundedOnce() {
+    real v = 0;
+    std::string error;
+    bool read = ParseReal("1.00000005960464478", &v, &error);
+    real expected = sizeof(real) == sizeof(float) ? real(1) + real(0x1p-23) : real(1 + 0x1p-24);
+    CHECK(read && v == expected,
+          "1.00000005960464478 is 1 + 2^-23 in float, 1 + 2^-24 in double (rounded once)");
+}
+
+// Whole numbers (--size, --spp, `size`, `depth`): leading zeros add nothing, however many, and
+// too many digits is out of range, never an overflow.
+static void TestWholeNumbers() {
+    int v = 0;
+    std::string error;
+    CHECK(ParseWholeNumber("0000000000064", 1, 16384, &v, &error) && v == 64,
+          "'0000000000064' is 64");
+    CHECK(ParseWholeNumber("+00000000004", 1, 65536, &v, &error) && v == 4, "'+00000000004' is 4");
+    CHECK(ParseWholeNumber("-000000000000", 0, 5, &v, &error) && v == 0, "'-000000000000' is 0");
+    CHECK(!ParseWholeNumber("99999999999999999999999", 1, 16384, &v, &error) &&
+              error.find("must be between 1 and 16384") != std::string::npos,
+          "23 nines: must be between 1 and 16384");
+    CHECK(!ParseWholeNumber("-4294967297", -5, 5, &v, &error) &&
+              !ParseWholeNumber("4294967301", -5, 5, &v, &error),
+          "-(2^32 + 1) and 2^32 + 5 are out of range, not wrapped into it");
 }
 
 // A line holds at most kMaxLineLength bytes, its line ending and comment not counted: one of
@@ -95,6 +131,8 @@ static void TestNearWord() {
 
 void TestText() {
     TestNumbersAsStrtod();
+    TestRoundedOnce();
+    TestWholeNumbers();
     TestLineLimit();
     TestNearWord();
 }
