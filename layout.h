@@ -36,15 +36,18 @@ struct Box {
 // What a triangle's hit needs that does not depend on the ray (plane.cpp): the box that holds
 // every hit (TriangleBox, the window), and the plane's normal as the first tier rounds it. The
 // committed scene keeps one for each triangle (SceneLayout); the plain loop makes it as it goes.
+// (The small members sit together after the box, so no padding follows each: 144 bytes in
+// double, not 160, and the box's size and `flat`, which every survivor's reach test reads
+// first, are within 16 bytes of each other.)
 struct TriangleSetUp {
     Box box;
     int scale;          // the edges are multiplied by 2^scale before their cross product
-    dvec3 n;            // (b - a) 2^scale x (c - a) 2^scale, rounded
-    dvec3 nError;       // per component of n, a bound on its rounding error
     bool normalKnown;   // nError small against n: the first half of FirstOrderHolds (plane.cpp)
     unsigned char flat; // the axis of n's largest component: the one the plane most nearly faces
-    vec3 normal;        // n / |n|, for shading
     bool hasArea;       // n is neither 0 nor beyond the range of numbers
+    dvec3 n;            // (b - a) 2^scale x (c - a) 2^scale, rounded
+    dvec3 nError;       // per component of n, a bound on its rounding error
+    vec3 normal;        // n / |n|, for shading
     real awayShare;     // for RayHit::awayShare: > 0 where normalKnown, else 0
 };
 
