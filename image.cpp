@@ -102,15 +102,22 @@ static std::string FolderOf(const std::string &file) {
     return slash == std::string::npos ? "./" : file.substr(0, slash + 1);
 }
 
-// Why no new file can be made in `folder`, as an errno value (it is missing, not a folder, or
-// may not be written), or 0 when one can.
-static int FolderProblem(const std::string &folder) {
-    struct stat info;
+// Why the image cannot be made in `folder` and renamed over `file`, as an errno value, or 0 when
+// it can: the folder is missing, not a folder, or may not be written; or it is a sticky folder
+// (as /tmp is) and the file someone else's, which only its owner, the folder's or root may
+// replace. (Other limits, such as Linux's append-only attribute, show only when the rename is
+// refused, after the render.)
+static int FolderProblem(const std::string &folder, const std::string &file) {
+    struct stat info, existing;
     if (stat(folder.c_str(), &info) != 0)
         return errno;
     if (!S_ISDIR(info.st_mode))
         return ENOTDIR;
-    return access(folder.c_str(), W_OK | X_OK) == 0 ? 0 : errno;
+    if (access(folder.c_str(), W_OK | X_OK) != 0)
+        return errno;
+    uid_t me = geteuid();
+    bool sticky = (info.st_mode & S_ISVTX) != 0 && me != 0 && info.st_uid != me;
+    return sticky && stat(file.c_str(), &existing) == 0 && existing.st_uid != me ? EPERM : 0;
 }
 
 // Where a regular file's image will go (WriteImage): the file its links lead to, and a new file in
@@ -122,13 +129,17 @@ static bool CanReplace(const std::string &output, std::string *error) {
         return false;
     }
     std::string folder = FolderOf(file);
-    int why = FolderProblem(folder);
+    int why = FolderProblem(folder, file);
     if (why == 0)
         return true;
     *error = output + ": " + strerror(why);
-    if (why == EACCES || why == EROFS) // (the file itself may be writable: not enough)
+    if (why == EPERM) // (the file itself may be writable)
+        *error += " (" + folder + " is a sticky folder: only the file's owner may replace it)";
+    else if (why == EACCES || why == EROFS)
         *error +=
             " (in " + folder + ", where the image is written before it is renamed into place)";
+    else if (file != output) // (say where the link leads: the link itself exists)
+        *error += " (the link leads to " + file + ")";
     return false;
 }
 
@@ -138,9 +149,12 @@ bool CheckOutputPath(const std::string &output, const std::vector<std::string> &
     errno = 0;
     bool exists = stat(output.c_str(), &out) == 0;
     *status = 2;
-    if (!exists && errno == ELOOP) { // a loop of links: no file to write, and none to make
+    // Not there (ENOENT) is what a new output is; anything else names no file that can be made: a
+    // loop of links (ELOOP: no file to write, and none to make), a name too long, a folder on the
+    // way that is a file or may not be searched
+    if (!exists && errno != ENOENT) {
         *status = 3;
-        *error = output + ": " + strerror(ELOOP);
+        *error = output + ": " + strerror(errno);
         return false;
     }
     if (exists && S_ISDIR(out.st_mode)) {
@@ -165,8 +179,8 @@ bool CheckOutputPath(const std::string &output, const std::vector<std::string> &
     // A file nobody may write is refused even when the system would let us (root): it was made
     // read-only on purpose, and replacing it would lose it
     if (exists && !special && (access(output.c_str(), W_OK) != 0 || (out.st_mode & 0222) == 0)) {
-        *status = 3;
-        *error = output + ": Permission denied";
+        *status = 3; // (the system's reason: a file system mounted read-only says so)
+        *error = output + ": " + strerror((out.st_mode & 0222) == 0 ? EACCES : errno);
         return false;
     }
     if (!special && !CanReplace(output, error)) {

@@ -88,7 +88,7 @@ static void PrintLayout(const Scene *scene, double commitSeconds) {
             layout->wide ? "blocks tested in AVX2 vectors" : "blocks tested lane by lane");
 }
 
-// (`threads`: the threads that rendered, which may be fewer than --threads asked for.)
+// (`threads`: the threads the render ran on, which may be fewer than --threads asked for.)
 static void PrintStats(const RayStats *s, const RenderSettings *settings, int threads,
                        double renderSeconds, double totalSeconds) {
     uint64_t total = s->primary + s->shadow + s->reflection + s->refraction + s->diffuse;
@@ -381,8 +381,6 @@ static int Run(int argc, char **argv) {
     return RenderToFile(&opt, &scene, &settings, defaultOutput, start, commitSeconds);
 }
 
-// An allocation that fails (a scene of millions of shapes under a memory limit, an image of
-// 16384 x 16384 on a small machine) is an error message and exit 2, never an abort.
 // Whether all that was printed reached standard output; false with *why where some could not
 // be written (a pipe whose reader has gone, a full disk).
 static bool OutputWritten(std::string *why) {
@@ -393,6 +391,8 @@ static bool OutputWritten(std::string *why) {
     return false;
 }
 
+// An allocation that fails (a scene of millions of shapes under a memory limit, an image of
+// 16384 x 16384 on a small machine) is an error message and exit 2, never an abort.
 int main(int argc, char **argv) {
     // A reader that goes away (`ray --rays - | head -1`) is an error to report, not a signal
     // that ends the program: with SIGPIPE ignored, a write to the closed pipe fails instead

@@ -217,7 +217,8 @@ void PlanRender(const Scene *scene, RenderSettings *settings);
 
 // Renders every pixel on at most settings->threads threads into *image; adds the rays cast to
 // *stats. Plans its own copy of the settings for this scene (PlanRender). Returns the number of
-// threads that rendered: no more than the image has rows, or than the system would start.
+// threads it ran on (the calling one and those it started): no more than the image has rows, or
+// than the system would start.
 int Render(const Scene *scene, const RenderSettings *settings, Image *image, RayStats *stats);
 
 // The colour of pixel (i, j): the average of its samples, before clamping. `settings` must have

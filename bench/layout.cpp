@@ -223,7 +223,7 @@ int LayoutTable(const char *folder) {
     FILE *md = fopen(path.c_str(), "w");
     if (!md)
         return 3;
-    fprintf(md, "| triangles | BVH build ms | layout MB | its first touch, CPU ms | list render ms "
+    fprintf(md, "| triangles | BVH build ms | layout MB | its first touch, ms | list render ms "
                 "| BVH render ms | rays | BVH Mrays/s |\n"
                 "|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const Row &r : rows)
@@ -233,8 +233,9 @@ int LayoutTable(const char *folder) {
                 r.tree.rays / r.tree.Median() / 1e3);
     fprintf(md,
             "\nA fresh 4 KB page costs this machine %.2f us (a new 64 MB buffer written a byte a "
-            "page, median of 5): \"its first touch\" is the layout's pages at that price, CPU time "
-            "that any build writing that layout spends, on whichever threads write it.\n",
+            "page on one thread, wall time, median of 5): \"its first touch\" is the layout's "
+            "pages at that price, the time one thread would spend; a build that writes the layout "
+            "on two threads spends it on both, in about half the time at best.\n",
             pageUs);
     fclose(md);
     WritePlot(rows, std::string(folder) + "/layout.svg");

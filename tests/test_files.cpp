@@ -138,20 +138,22 @@ static void TestSpecialOutputs(const std::string &dir) {
 
 // Where the output cannot be made, the run says so before it renders, with exit 3, and changes
 // nothing: a loop of symbolic links (which names no file: replacing one link of it would lose
-// it), a folder that does not exist, a file used as a folder, and (for a user other than root,
-// whom the system lets write anywhere) a folder that may not be written, though the file in it
-// may: the image is made beside the output and renamed over it. "Before it renders": the render
+// it), a name too long, a folder that does not exist, a file used as a folder; and, for a user
+// other than root (root may write any folder), a folder that may not be written, though the file
+// in it may (the image is made beside the output and renamed over it), and someone else's file in
+// a sticky folder (as in /tmp), which only its owner may replace. "Before it renders": the render
 // asked for (16384 x 16384 pixels at 65536 samples) would outlast the 30 s of CPU the shell
 // allows it, and a run stopped by that limit gives no exit 3.
 static void TestOutputFolders(const std::string &dir) {
-    std::string err;
+    std::string err, as = ""; // (as root: the last cases run as nobody)
     const std::string big = "my.scene --size 16384 --spp 65536 -o ";
     auto refused = [&](const std::string &output) {
-        return RunRayAfter(dir, "ulimit -t 30 &&", big + output, &err) == 3;
+        return RunRayAfter(dir, "ulimit -t 30 && " + as, big + output, &err) == 3;
     };
     int a = symlink("loop-b.png", (dir + "/loop-a.png").c_str());
     int b = symlink("loop-a.png", (dir + "/loop-b.png").c_str());
     int self = symlink("self.png", (dir + "/self.png").c_str());
+    int lost = symlink("../no-such-folder/x.png", (dir + "/lost.png").c_str());
     struct stat info;
     CHECK(a == 0 && b == 0 && refused("loop-a.png") &&
               err.find("loop-a.png: Too many levels of symbolic links") != std::string::npos &&
@@ -163,35 +165,65 @@ static void TestOutputFolders(const std::string &dir) {
     CHECK(self == 0 && refused("self.png") && lstat((dir + "/self.png").c_str(), &info) == 0 &&
               S_ISLNK(info.st_mode),
           "a symbolic link to itself as the output: exit 3 before the render, the link kept");
+    CHECK(refused(std::string(300, 'a') + ".png") &&
+              err.find("File name too long") != std::string::npos,
+          "an output name of 304 characters: exit 3 before the render, `File name too long`");
     CHECK(refused("no-such-folder/x.png") &&
               err.find("no-such-folder/x.png: No such file or directory") != std::string::npos,
           "an output in a folder that does not exist: exit 3 before the render (" + err + ")");
+    CHECK(lost == 0 && refused("lost.png") &&
+              err.find("(the link leads to ../no-such-folder/x.png)") != std::string::npos,
+          "a link into a folder that does not exist: exit 3 before the render, and where it "
+          "leads (" +
+              err + ")");
     CHECK(refused("my.scene/x.png") && err.find("Not a directory") != std::string::npos &&
               ReadFile(dir + "/my.scene") == kSmallScene,
           "an output 'in' a file (my.scene/x.png): exit 3 before the render, the file untouched");
-    if (geteuid() == 0) // (root may write any folder: nothing to refuse)
-        return;
-    std::string folder = dir + "/shut";
-    mkdir(folder.c_str(), 0755);
-    Write(folder + "/open.png", "old");
-    chmod((folder + "/open.png").c_str(), 0666);
-    chmod(folder.c_str(), 0555);
+    if (geteuid() == 0) { // as nobody, where the system has setpriv and nobody may run the program
+        chmod(dir.c_str(), 0755);
+        as = "setpriv --reuid=65534 --regid=65534 --clear-groups";
+        if (RunRayAfter(dir, as, "--version", &err) != 0) {
+            printf("   (as root without a way to run as another user: no unwritable folders)\n");
+            chmod(dir.c_str(), 0700);
+            return;
+        }
+    }
+    std::string shut = dir + "/shut", sticky = dir + "/sticky";
+    mkdir(shut.c_str(), 0755);
+    Write(shut + "/open.png", "old");
+    chmod((shut + "/open.png").c_str(), 0666);
+    chmod(shut.c_str(), 0555);
     CHECK(refused("shut/open.png") && err.find("where the image is written") != std::string::npos &&
-              ReadFile(folder + "/open.png") == "old",
+              ReadFile(shut + "/open.png") == "old",
           "a writable file in a folder that may not be written: exit 3 before the render, "
           "untouched, and why (" +
               err + ")");
-    chmod(folder.c_str(), 0755);
+    chmod(shut.c_str(), 0755);
+    if (geteuid() == 0) { // (someone else's file in a sticky folder: root's, to nobody)
+        mkdir(sticky.c_str(), 0755);
+        chmod(sticky.c_str(), 01777);
+        Write(sticky + "/theirs.png", "old");
+        chmod((sticky + "/theirs.png").c_str(), 0666);
+        CHECK(refused("sticky/theirs.png") &&
+                  err.find("is a sticky folder: only the file's owner") != std::string::npos &&
+                  ReadFile(sticky + "/theirs.png") == "old",
+              "someone else's writable file in a sticky folder: exit 3 before the render, "
+              "untouched, and why (" +
+                  err + ")");
+        chmod(dir.c_str(), 0700);
+    }
 }
 
 // A reader that goes away early (`ray --rays many.txt | head -c 1`, an image to `-o /dev/stdout`
 // piped the same way) ends the run with exit 3 and "Broken pipe", not with the signal SIGPIPE.
+// Both outputs are far larger than a pipe holds (64 KB; the image about 400 KB), so the program
+// is still writing when the reader has gone, however late the reader leaves.
 static void TestClosedPipe(const std::string &dir) {
     std::string rays;
     for (int k = 0; k < 20000; k++) // about 2 MB of answers: far more than a pipe holds
         rays += "0 0 0 0 0 -1\n";
     Write(dir + "/many.txt", rays);
-    for (const char *args : {"my.scene --rays many.txt", "my.scene --size 600 -o /dev/stdout"}) {
+    for (const char *args : {"my.scene --rays many.txt", "my.scene --size 3000 -o /dev/stdout"}) {
         std::string command = "cd '" + dir + "' && ( '" + RayPath() + "' " + args +
                               " 2>pipe-err.txt; echo $? >pipe-status.txt ) | head -c 1 >/dev/null";
         int ignored = system(command.c_str());

@@ -57,9 +57,10 @@ static void TestNumbersAsStrtod() {
                            std::to_string(differ) + " differ; the first: '" + first + "')");
 }
 
-// A number is rounded once, to the build's own type. 1 + 2^-24 + 2^-60 is just past the midpoint
-// of the floats 1 and 1 + 2^-23: as a float it is the latter, though the double nearest to it is
-// the midpoint itself, which would round (to even) to 1.
+// A number is rounded once, to the build's own type. 1.00000005960464478 is 1 + 2^-24 and about
+// 4.6e-18 more: just past the midpoint of the floats 1 and 1 + 2^-23, so as a float it is the
+// latter, though the double nearest to it is the midpoint itself, which would round (to even)
+// to 1.
 static void TestRoundedOnce() {
     real v = 0;
     std::string error;
