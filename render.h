@@ -174,6 +174,7 @@ inline void CountRay(RayKind kind, RayStats *stats) {
         break;
     }
 }
+
 // Adds a node for a ray of this kind to log->tree, if a tree is being recorded, with
 // log->current as its parent (returns the node's index, or -1).
 int RecordRay(RayKind kind, const Ray *ray, TraceLog *log);
