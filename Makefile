@@ -13,9 +13,15 @@ RT_FLAGS = -std=c++17 -Wall -Wextra -ffp-contract=off -fno-math-errno -pthread -
 PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
 PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 
-# Every scene_*.cpp but the reader is a scene built in C++ (README, "Writing a scene in C++").
-SCENES = $(filter-out scene_file,$(basename $(wildcard scene_*.cpp)))
-CORE = geometry commit build kernel packet handout watertight plane shade path camera render image image_read text scene_file statements mesh probe views $(SCENES)
+# The teaching core at the top (every scene_*.cpp is a scene built in C++: README, "Writing a
+# scene in C++"), and the three wings: robust/, fast/ and app/.
+SCENES = $(basename $(wildcard scene_*.cpp))
+TOP = geometry camera shade path render $(SCENES)
+ROBUST = robust/watertight robust/plane robust/rescale
+FAST = fast/commit fast/build fast/kernel
+APP = app/options app/modes app/image app/image_read app/text app/scene_file app/statements \
+      app/mesh app/probe app/views
+CORE = $(TOP) $(ROBUST) $(FAST) $(APP)
 TESTS = $(basename $(notdir $(wildcard tests/test_*.cpp))) exercise hard_cases hard_cases_offset robust_scenes
 
 # Object lists for one build variant: $(call objs,DIR,NAMES)
@@ -27,10 +33,10 @@ SAN_CORE = $(call objs,build/sanitize,$(CORE))
 
 all: ray ray_float
 
-ray: build/double/ray.o build/double/options.o $(DOUBLE_CORE)
+ray: build/double/ray.o $(DOUBLE_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
-ray_float: build/float/ray.o build/float/options.o $(FLOAT_CORE)
+ray_float: build/float/ray.o $(FLOAT_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
 build/double/%.o: %.cpp
@@ -61,7 +67,7 @@ build/sanitize/%.o: %.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(SAN_FLAGS) $(RT_FLAGS) $(PNG_CFLAGS) -I. -c -o $@ $<
 
-build/sanitize/ray: build/sanitize/ray.o build/sanitize/options.o $(SAN_CORE)
+build/sanitize/ray: build/sanitize/ray.o $(SAN_CORE)
 	$(CXX) $(SAN_FLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
 build/sanitize/run_tests: $(call objs,build/sanitize/tests,$(TESTS)) $(SAN_CORE)
@@ -127,4 +133,4 @@ clean:
 
 .PHONY: all test check sanitize fuzz bench bench-publish clean
 
--include $(wildcard build/*/*.d build/*/tests/*.d build/*/bench/*.d)
+-include $(wildcard build/*/*.d build/*/*/*.d)

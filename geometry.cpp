@@ -1,14 +1,52 @@
 // geometry.cpp -- where rays meet shapes, and nothing else.
 //
-// rt's robust sphere (the assignment's quadratic, made stable: Ray Tracing Gems ch. 7), the second
-// handout's nearest hit over a list of shapes, which serves every ray, and how a ray leaves a
-// surface without hitting it again (pbrt-v4 §6.8's error bounds, or a handout's rule). Triangles:
-// watertight.cpp decides inside or outside, plane.cpp says where; the handouts' own forms of
-// both shapes are in handout.cpp. Compiled with -ffp-contract=off: see the Makefile.
+// Read top to bottom: the assignment slide's sphere, then the same quadratic made stable (rt's
+// IntersectSphere, each changed line marked with the slide's); Cramer's rule with the slide's
+// A..M and the second handout's plane test (rt's own triangle test, watertight, is in robust/);
+// the one loop over the list of shapes that finds the nearest hit for every ray, and the any-hit
+// query of shadow rays; then how a ray leaves a surface without hitting it again. The handouts'
+// methods are what a careful student writes, the hit point o + t d included; all they gain is an
+// honest bound on that point's error, for the rays that leave it, and no hit where the point is
+// not a number. Compiled with -ffp-contract=off: see the Makefile.
 #include "ray.h"
-#include "robust.h"
+#include "robust/robust.h"
 
 #include <algorithm>
+
+// ---- spheres -------------------------------------------------------------------------------
+
+// The assignment handout's sphere test, as the slide writes it: A t^2 + B t + C = 0 with
+// A = d.d, B = 2 d.(o - c), C = (o - c).(o - c) - r^2; no hit if B^2 - 4AC < 0; else the least root
+// above tMin (the second handout: the least non-negative one), and the point o + t d. It loses a
+// small sphere far away (C swallows r^2) and the near root of a big one (-B + sqrt cancels).
+// Its point's honest error bound is measured, not assumed: how far o + t d is from the sphere.
+bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
+    vec3 d = ray->dir, oc = ray->origin - s->center;
+    real A = Dot(d, d);
+    real B = 2 * Dot(d, oc);
+    real C = Dot(oc, oc) - s->radius * s->radius;
+    real discriminant = B * B - 4 * A * C;
+    if (!(discriminant >= 0) || !(A > 0))
+        return false;
+    real t = (-B - std::sqrt(discriminant)) / (2 * A);
+    if (!(t > tMin))
+        t = (-B + std::sqrt(discriminant)) / (2 * A);
+    if (!(t > tMin && t < tMax))
+        return false;
+    vec3 point = ray->origin + t * d, local = point - s->center;
+    vec3 normal = (1 / s->radius) * local;
+    real offSphere = std::fabs(SafeLength(local) - s->radius) + Gamma(4) * SafeLength(local);
+    if (!IsFinite(point) || !IsFinite(normal) || !std::isfinite(offSphere))
+        return false; // beyond the range of numbers: the quadratic has no answer there
+    hit->t = t;
+    hit->point = point;
+    hit->pointError = offSphere * Abs(normal) + Gamma(2) * Abs(point);
+    SetFaceNormal(ray, SafeNormalize(normal), hit);
+    hit->material = s->material;
+    hit->shape = SHAPE_SPHERE;
+    hit->awayShare = 0; // never passed over
+    return true;
+}
 
 // The quadratic's discriminant halfB^2 - A C in the form A r^2 - |f x d|^2 (see SolveSphere):
 // |f x d| / |d| is how far the ray's line passes from the centre, so it is negative exactly
@@ -78,6 +116,17 @@ static bool SolveSphere(vec3 f, vec3 d, real r, real tMin, real tMax, real *tHit
     return true;
 }
 
+// A quick first step, where most spheres a ray meets end: the line passes the centre farther than
+// the radius (SphereDiscriminant < 0), as SolveSphere would find. Trusted only when A r^2 is a
+// normal number: a square that overflowed (inf - inf is NaN, not < 0) or fell below the normal
+// range goes on to the rescaled test.
+static inline bool LineMissesSphere(const Sphere *s, const Ray *ray) {
+    vec3 d = ray->dir;
+    real a = Dot(d, d), r2 = s->radius * s->radius;
+    return SphereDiscriminant(ray->origin - s->center, d, a, r2) < 0 &&
+           a * r2 >= std::numeric_limits<real>::min();
+}
+
 // The sphere test for a ray and sphere of any size. SolveSphere squares lengths (d.d, r^2,
 // |f x d|^2), which overflow for a light 1e153 away and underflow for a sphere of radius
 // 1e-200. So outside the windows of numbers.h it runs in rescaled units: d times 2^kd (largest
@@ -90,6 +139,7 @@ static bool SolveSphere(vec3 f, vec3 d, real r, real tMin, real tMax, real *tHit
 bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
     if (!(s->radius > 0) || !std::isfinite(s->radius))
         return false;
+    // robust: lengths rescaled by powers of two where a square could leave the range of numbers
     int kd = 0, kr = 0;
     if (!WithinWindow(MaxComponent(ray->dir), kDirectionWindow) ||
         !WithinWindow(s->radius, kLengthWindow) ||
@@ -123,123 +173,139 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
     return true;
 }
 
-// A ray's direction rescaled to a largest component in [1, 2) when it lies outside
-// kDirectionWindow (numbers.h), and its interval with it, so that no shape test squares or divides
-// a direction of 1e-200 or 1e200 out of range. Scaling d by 2^k scales every t by 2^-k exactly;
-// ScaleBack undoes it. False for a direction that is zero (or not finite): such a ray has no
-// answer.
-struct ScaledRay {
-    Ray ray;
-    int k;
-    real tMin, tMax;
-};
+// ---- triangles: the handouts' forms (rt's own, watertight: robust/watertight.cpp) ----------
 
-// Where ScaledInterval cuts the search at one end of the interval, `end`, whose next number
-// inward is `inward`. Where scaling back rounds (k < 0 and t below the normal numbers), a t'
-// past halfway between end 2^-k and inward 2^-k comes back as `inward` (rounding to nearest)
-// and one short of it as `end`, so the cut is halfway; elsewhere scaling back is exact, and the
-// cut is inward 2^-k. (Exact: for k < 0 both are scaled up, and the halfway point of two numbers
-// that came from neighbours in t has a bit to spare in t'.)
-static real CutAt(real end, real inward, int k) {
-    real a = ScaleByPowerOfTwo(end, -k), b = ScaleByPowerOfTwo(inward, -k);
-    if (k >= 0 || !std::isfinite(a) || !std::isfinite(b))
-        return b;
-    return a + (b - a) / 2;
-}
-
-// The scaled ray's interval: (tMin 2^-k, tMax 2^-k), cut so that every t' in it comes back
-// (ScaleBack, t = t' 2^k) inside (tMin, tMax). Between normal numbers the scaling is exact and
-// cuts nothing; at the ends of the range t' 2^k overflows or rounds to 0, and a shape found
-// there would be refused on the way back, leaving no answer: a search for any hit, stopped at
-// it, would miss a nearer shape that blocks the ray, and the nearest hit one farther. So each
-// end is cut where t' 2^k crosses it (CutAt), then checked against ScaleBack's own rounding and
-// moved one step where it falls on the wrong side (a tie rounds to even). ScaleByPowerOfTwo
-// rounds monotonically, so every t' between the two ends comes back inside, and none outside
-// them would. (Cold: only a direction outside the window comes here, and inlined it made
-// ScaleRay too large to be inlined into every search: 3% more instructions for the assignment.)
-RT_COLD static void ScaledInterval(real tMin, real tMax, int k, real *lo, real *hi) {
-    real first = CutAt(tMin, NextAfter(tMin, true), k); // the least t' above tMin
-    if (!(ScaleByPowerOfTwo(first, k) > tMin))
-        first = NextAfter(first, true);
-    real last = CutAt(tMax, NextAfter(tMax, false), k); // the largest t' below tMax
-    if (!(ScaleByPowerOfTwo(last, k) < tMax))
-        last = NextAfter(last, false);
-    *lo = NextAfter(first, false), *hi = NextAfter(last, true); // (both ends open)
-}
-
-static bool ScaleRay(const Ray *ray, real tMin, real tMax, ScaledRay *s) {
-    if (SearchedAsIs(ray->dir)) { // s->ray is not needed
-        s->k = 0, s->tMin = tMin, s->tMax = tMax;
-        return true;
-    }
-    s->k = UnitExponent(ray->dir);
-    s->ray = {ray->origin, ScaleByPowerOfTwo(ray->dir, s->k)};
-    ScaledInterval(tMin, tMax, s->k, &s->tMin, &s->tMax);
-    return MaxComponent(s->ray.dir) >= 1 && IsFinite(s->ray.dir);
-}
-
-// The hit's t in units of the original direction; false if that leaves (tMin, tMax) by
-// overflowing or underflowing.
-static bool ScaleBack(const ScaledRay *s, real tMin, real tMax, RayHit *hit) {
-    if (s->k == 0)
-        return true;
-    hit->t = ScaleByPowerOfTwo(hit->t, s->k);
-    return hit->t > tMin && hit->t < tMax;
-}
-
-bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit) {
-    ScaledRay s;
-    RayShear shear;
-    RayHit found;
-    if (!ScaleRay(ray, tMin, tMax, &s))
+// The hit record of a handout triangle test at ray parameter t: the point o + t d, as a student
+// computes it, and its honest error bound, measured: how far that point is from the triangle's
+// plane, plus its own rounding. False (and *hit untouched) for a triangle with no area, or a
+// point that is not a number.
+static bool SetHandoutTriangleHit(const Triangle *tri, const Ray *ray, real t, RayHit *hit) {
+    vec3 unit = SafeNormalize(Cross(tri->b - tri->a, tri->c - tri->a));
+    vec3 p = ray->origin + t * ray->dir;
+    real offPlane =
+        std::fabs(Dot(unit, p - tri->a)) + Gamma(4) * (SafeLength(p) + SafeLength(tri->a));
+    if (!(MaxComponent(unit) > 0) || !IsFinite(unit) || !IsFinite(p) || !std::isfinite(offPlane))
         return false;
-    if (s.k == 0)
-        s.ray = *ray;
-    ShearRay(&s.ray, &shear);
-    if (!IntersectWatertight(tri, nullptr, &s.ray, &shear, s.tMin, s.tMax, &found) ||
-        !ScaleBack(&s, tMin, tMax, &found))
-        return false;
-    *hit = found;
+    hit->t = t;
+    hit->point = p;
+    hit->pointError = offPlane * Abs(unit) + Gamma(2) * Abs(p);
+    SetFaceNormal(ray, unit, hit);
+    hit->material = tri->material;
+    hit->shape = SHAPE_TRIANGLE;
+    hit->awayShare = 0; // never passed over: a handout method's hit has no such bound
     return true;
 }
 
-// Trusted only when a r^2 is a normal number: a square that overflowed (inf - inf is NaN, not
-// < 0) or fell below the normal range goes on to IntersectSphere, which rescales.
-static inline bool LineMissesSphere(const Sphere *s, const Ray *ray) {
-    vec3 d = ray->dir;
-    real a = Dot(d, d), r2 = s->radius * s->radius;
-    return SphereDiscriminant(ray->origin - s->center, d, a, r2) < 0 &&
-           a * r2 >= std::numeric_limits<real>::min();
+// The handout's triangle test: solve a + beta (b - a) + gamma (c - a) = e + t d by Cramer's
+// rule, with the variables A..M of the slide (Shirley & Marschner, Fundamentals of Computer
+// Graphics, §4.4.2). Not watertight: each triangle rounds its shared edges differently, so rays
+// through an edge can slip between two triangles (docs/robustness.md). rt's IntersectTriangle
+// (robust/watertight.cpp) is.
+bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
+                             RayHit *hit) {
+    vec3 a = tri->a, b = tri->b, c = tri->c, e = ray->origin, d = ray->dir;
+    real A = a.x - b.x, B = a.y - b.y, C = a.z - b.z;
+    real D = a.x - c.x, E = a.y - c.y, F = a.z - c.z;
+    real G = d.x, H = d.y, I = d.z;
+    real J = a.x - e.x, K = a.y - e.y, L = a.z - e.z;
+
+    // M is the determinant; 0 means the ray is parallel to the plane (or the triangle is flat)
+    real EIHF = E * I - H * F, GFDI = G * F - D * I, DHEG = D * H - E * G;
+    real M = A * EIHF + B * GFDI + C * DHEG;
+    if (M == 0 || !std::isfinite(M))
+        return false;
+
+    // Compute t, then reject early, as the handout does: t, then gamma, then beta
+    real AKJB = A * K - J * B, JCAL = J * C - A * L, BLKC = B * L - K * C;
+    real t = -(F * AKJB + E * JCAL + D * BLKC) / M;
+    if (!(t > tMin && t < tMax))
+        return false;
+    real gamma = (I * AKJB + H * JCAL + G * BLKC) / M;
+    if (gamma < 0 || gamma > 1)
+        return false;
+    real beta = (J * EIHF + K * GFDI + L * DHEG) / M;
+    if (beta < 0 || beta > 1 - gamma)
+        return false;
+
+    return SetHandoutTriangleHit(tri, ray, t, hit);
 }
 
-// One sphere, by the chosen method. The stable test's first step is inlined here: most spheres
-// a ray meets end at it.
-static inline bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, real tMin, real tMax,
-                             RayHit *hit) {
+// The second handout's triangle test, in two steps. First the plane: n = (b - a) x (c - a) and
+// t = n.(a - o) / n.d (no hit if the ray is parallel, n.d = 0). Then inside or outside: the hit
+// point p is inside if the cross products (b - a) x (p - a), (c - b) x (p - b) and
+// (a - c) x (p - c) all point the way n does, compared on the coordinate where n is largest
+// (the other two can be 0 for a triangle seen edge-on). The handout dots each with n instead;
+// for p on the plane each cross product is parallel to n, so the sign is the same up to
+// rounding, from three products instead of nine. Not watertight: p is rounded, and each
+// triangle rounds its shared edge its own way. Its point's error bound is measured: how far
+// o + t d is from the plane, plus its own rounding.
+bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax,
+                            RayHit *hit) {
+    vec3 a = tri->a, b = tri->b, c = tri->c;
+    vec3 n = Cross(b - a, c - a);
+    real nDotD = Dot(n, ray->dir);
+    if (nDotD == 0 || !std::isfinite(nDotD))
+        return false;
+    real t = Dot(n, a - ray->origin) / nDotD;
+    if (!(t > tMin && t < tMax))
+        return false;
+    vec3 p = ray->origin + t * ray->dir;
+    vec3 size = Abs(n);
+    int k = size.x > size.y ? (size.x > size.z ? 0 : 2) : (size.y > size.z ? 1 : 2);
+    real nk = Component(n, k);
+    // handout: Dot(Cross(b - a, p - a), n) < 0 || ... for the three edges
+    if (Component(Cross(b - a, p - a), k) * nk < 0 || Component(Cross(c - b, p - b), k) * nk < 0 ||
+        Component(Cross(a - c, p - c), k) * nk < 0)
+        return false;
+    return SetHandoutTriangleHit(tri, ray, t, hit);
+}
+
+// ---- the nearest hit over the list of shapes ----------------------------------------------
+
+// One sphere, and one triangle, by the chosen method. (The stable sphere's test first takes the
+// step where most spheres a ray meets end, LineMissesSphere: fast/ takes that step for several
+// spheres at once, and sends the others on to IntersectSphere, as here.)
+static bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, real tMin, real tMax,
+                      RayHit *hit) {
     if (methods.sphere == SPHERE_TEXTBOOK)
         return IntersectSphereTextbook(s, ray, tMin, tMax, hit);
     return !LineMissesSphere(s, ray) && IntersectSphere(s, ray, tMin, tMax, hit);
 }
 
-// One triangle by a handout method (the watertight method has its own loop, in watertight.cpp).
-static inline bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray, real tMin,
-                               real tMax, RayHit *hit) {
+static bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray, real tMin, real tMax,
+                        RayHit *hit) {
     if (methods.triangle == TRIANGLE_CRAMER)
         return IntersectTriangleCramer(tri, ray, tMin, tMax, hit);
-    return IntersectTrianglePlane(tri, ray, tMin, tMax, hit);
+    if (methods.triangle == TRIANGLE_PLANE)
+        return IntersectTrianglePlane(tri, ray, tMin, tMax, hit);
+    return IntersectTriangle(tri, ray, tMin, tMax, hit);
 }
 
-// The spheres one by one, in scene order, the reference for the kernel's sphere blocks
-// (HitCommittedSpheres): each hit lowers *tMax, so a later sphere only counts if it is nearer,
-// and a tie keeps the earlier one. With anyHit the first hit ends the search.
-static bool HitSpheres(const Scene *scene, Methods methods, int skip, const Ray *ray, real tMin,
-                       real *tMax, bool anyHit, RayHit *hit) {
+// The second handout's nearest hit over the list of shapes: every hit shrinks tMax, so each
+// later shape only counts if it is nearer, and a tie keeps the earlier shape. With anyHit, the
+// first hit ends the search (a shadow ray needs no more). The shape the ray leaves, if `from`
+// names one, is passed over (the second handout's rule, or rt's where the ray plainly goes away
+// from a triangle: StartLeaving). The skip comes before the test, because a test that hits
+// writes *hit.
+static bool HitList(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from,
+                    real tMin, real tMax, bool anyHit, RayHit *hit) {
     bool found = false;
-    for (int i = 0, n = (int)scene->spheres.size(); i < n; i++) {
-        if (i == skip || !HitSphere(methods, &scene->spheres[i], ray, tMin, *tMax, hit))
-            continue; // (the skip first: a test that hits writes *hit)
+    for (int i = 0; i < (int)scene->spheres.size(); i++) {
+        if ((from->shape == SHAPE_SPHERE && i == from->index) ||
+            !HitSphere(methods, &scene->spheres[i], ray, tMin, tMax, hit))
+            continue;
         hit->index = i;
-        *tMax = hit->t;
+        tMax = hit->t;
+        found = true;
+        if (anyHit)
+            return true;
+    }
+    for (int i = 0; i < (int)scene->triangles.size(); i++) {
+        if ((from->shape == SHAPE_TRIANGLE && i == from->index) ||
+            !HitTriangle(methods, &scene->triangles[i], ray, tMin, tMax, hit))
+            continue;
+        hit->index = i;
+        tMax = hit->t;
         found = true;
         if (anyHit)
             return true;
@@ -247,89 +313,79 @@ static bool HitSpheres(const Scene *scene, Methods methods, int skip, const Ray 
     return found;
 }
 
-// The second handout's nearest hit over the list of shapes: every hit shrinks tMax, so each
-// later shape only counts if it is nearer, and a tie keeps the earlier shape. With anyHit, the
-// first hit found ends the search (a shadow ray needs no more). The shape `start` names is passed
-// over: under --self-hit skip the one the ray leaves; under the default bound, the triangle it
-// leaves where the ray plainly goes away from it (StartLeaving, robust.h), and none otherwise.
-static bool HitShapes(const Scene *scene, Methods methods, const Ray *given, const RayStart *start,
-                      real tMax, bool anyHit, RayHit *hit) {
-    ScaledRay s;
-    if (!ScaleRay(given, start->tMin, tMax, &s))
+bool SearchList(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from, real tMax,
+                bool anyHit, RayHit *hit) {
+    ScaledRay s; // robust: a direction of 1e-200 or 1e200 rescaled, so no test squares it
+    if (!ScaleRay(ray, from->tMin, tMax, &s))
         return false;
-    const Ray *ray = s.k == 0 ? given : &s.ray;
-    int skipSphere = start->shape == SHAPE_SPHERE ? start->index : -1;
-    int skipTriangle = start->shape == SHAPE_TRIANGLE ? start->index : -1;
-    // The sphere blocks only in AVX2 vectors: lane by lane (or in SSE2 pairs) they cost more than
-    // HitSpheres (the assignment at 128 x 128, 16 spp: 498 and 518 against 482 M instructions)
-    bool blocks = SpheresAreCurrent(scene) && scene->layout.wide;
-    bool found = methods.sphere != SPHERE_TEXTBOOK && blocks
-                     ? HitCommittedSpheres(scene, skipSphere, ray, s.tMin, &s.tMax, anyHit, hit)
-                     : HitSpheres(scene, methods, skipSphere, ray, s.tMin, &s.tMax, anyHit, hit);
-    if (found && anyHit)
-        return ScaleBack(&s, start->tMin, tMax, hit);
-    if (methods.triangle == TRIANGLE_WATERTIGHT) {
-        if (LayoutIsCurrent(scene)) { // the same answers, faster (kernel.cpp)
-            found = HitCommittedTriangles(scene, skipTriangle, ray, s.tMin, s.tMax, anyHit, hit) ||
-                    found;
-        } else {
-            RayShear shear; // the per-ray half of the test, once for all the triangles
-            ShearRay(ray, &shear);
-            found =
-                HitWatertightTriangles(scene->triangles.data(), (int)scene->triangles.size(),
-                                       skipTriangle, ray, &shear, s.tMin, s.tMax, anyHit, hit) ||
-                found;
-        }
-        return found && ScaleBack(&s, start->tMin, tMax, hit);
-    }
-    for (int i = 0, n = (int)scene->triangles.size(); i < n; i++) {
-        if (i == skipTriangle ||
-            !HitTriangle(methods, &scene->triangles[i], ray, s.tMin, s.tMax, hit))
-            continue;
-        hit->index = i;
-        s.tMax = hit->t;
-        found = true;
-        if (anyHit)
-            break;
-    }
-    return found && ScaleBack(&s, start->tMin, tMax, hit);
+    bool found = HitList(scene, methods, SearchedRay(&s, ray), from, s.tMin, s.tMax, anyHit, hit);
+    return found && ScaleBack(&s, from->tMin, tMax, hit);
+}
+
+// Every search: the list above, or the same answer found faster by the speed machinery that main
+// may install.
+static inline bool Search(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from,
+                          real tMax, bool anyHit, RayHit *hit) {
+    const Accelerator *fast = scene->accelerator;
+    if (fast) // fast: main's speed machinery (fast/), SearchList's very answer
+        return fast->search(fast, scene, methods, ray, from, tMax, anyHit, hit);
+    return SearchList(scene, methods, ray, from, tMax, anyHit, hit);
 }
 
 bool FindNearestHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax,
                     RayHit *hit) {
-    RayStart start = {tMin, SHAPE_SPHERE, -1};
-    return HitShapes(scene, methods, ray, &start, tMax, false, hit);
+    SelfHit from = {tMin, SHAPE_SPHERE, -1};
+    return Search(scene, methods, ray, &from, tMax, false, hit);
 }
 
 bool AnyHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax) {
-    RayStart start = {tMin, SHAPE_SPHERE, -1};
+    SelfHit from = {tMin, SHAPE_SPHERE, -1};
     RayHit scratch;
-    return HitShapes(scene, methods, ray, &start, tMax, true, &scratch);
+    return Search(scene, methods, ray, &from, tMax, true, &scratch);
 }
 
-bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
+bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from,
                         real tMax, RayHit *hit) {
-    return HitShapes(scene, methods, ray, start, tMax, false, hit);
+    return Search(scene, methods, ray, from, tMax, false, hit);
 }
 
-bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
+bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from,
                 real tMax) {
     RayHit scratch;
-    return HitShapes(scene, methods, ray, start, tMax, true, &scratch);
+    return Search(scene, methods, ray, from, tMax, true, &scratch);
 }
 
-void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray, RayStart *start) {
-    *start = kFromTheEye;
+void FindEyeRayHits(const Scene *scene, Methods methods, const Ray *rays, int count, RayHit *hits,
+                    bool *found) {
+    bool answered[kEyeRaysTogether] = {};
+    const Accelerator *fast = scene->accelerator;
+    if (fast) // fast: rays that go nearly the same way, searched together (a packet)
+        fast->eyeRays(fast, scene, methods, rays, count, hits, found, answered);
+    for (int k = 0; k < count; k++)
+        if (!answered[k])
+            found[k] = FindNearestHit(scene, methods, &rays[k], 0, kInfinity, &hits[k]);
+}
+
+// ---- leaving a surface ---------------------------------------------------------------------
+
+// The three ways of leaving a surface (SelfHitMethod). The handouts': start at the hit point and
+// ignore hits closer than an epsilon (the journal's t_min = 0.001), or ignore the shape left (the
+// second handout's shadow rays). rt's: start where no rounding can put the ray behind the
+// surface, the hit point moved off it by the point's own error bound (OffsetRayOrigin), so no
+// epsilon is needed at any scale; a triangle the ray plainly goes away from is then passed over,
+// which changes no answer and saves its test (StartLeaving).
+void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray, SelfHit *from) {
+    *from = kNoSelfHit;
     ray->dir = dir;
     ray->origin = hit->point;
-    if (methods->selfHit == SELF_HIT_BOUND) { // handout: skip the shape left, or t_min = 0.001
-        ray->origin = OffsetRayOrigin(hit, dir);
-        *start = StartLeaving(hit, dir, dir);
+    if (methods->selfHit == SELF_HIT_BOUND) {    // handout: skip the shape left, or t_min = 0.001
+        ray->origin = OffsetRayOrigin(hit, dir); // robust: off the surface by its error bound
+        *from = StartLeaving(hit, dir, dir);
     } else if (methods->selfHit == SELF_HIT_EPSILON) {
-        start->tMin = methods->epsilon / SafeLength(dir); // epsilon world units along the ray
+        from->tMin = methods->epsilon / SafeLength(dir); // epsilon world units along the ray
     } else {
-        start->shape = hit->shape;
-        start->index = hit->index;
+        from->shape = hit->shape;
+        from->index = hit->index;
     }
 }
 
@@ -338,17 +394,17 @@ void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray,
 // blocker, however far away the light is. Under the bound, the origin moves to the light's side
 // and the pass-over is judged for the final direction.
 bool ShadowRay(const RayHit *hit, vec3 lightPosition, const Methods *methods, Ray *ray,
-               RayStart *start) {
+               SelfHit *from) {
     vec3 side = lightPosition - hit->point;
     if (methods->selfHit == SELF_HIT_BOUND) {
-        ray->origin = OffsetRayOrigin(hit, side);
+        ray->origin = OffsetRayOrigin(hit, side); // robust: as in LeaveSurface
         ray->dir = lightPosition - ray->origin;
-        *start = StartLeaving(hit, side, ray->dir);
+        *from = StartLeaving(hit, side, ray->dir);
     } else {
-        LeaveSurface(hit, side, methods, ray, start);
+        LeaveSurface(hit, side, methods, ray, from);
         ray->dir = lightPosition - ray->origin;
         if (methods->selfHit == SELF_HIT_EPSILON)
-            start->tMin = methods->epsilon / SafeLength(ray->dir);
+            from->tMin = methods->epsilon / SafeLength(ray->dir);
     }
     return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
 }

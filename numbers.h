@@ -1,9 +1,9 @@
-// numbers.h -- the numbers and vectors rt computes with, and the exact rescaling that keeps
-// them in range.
+// numbers.h -- the numbers and vectors rt computes with, and the lengths of vectors of any size.
 //
 // `real` is double, or float when built with -DRT_FLOAT (the ray_float program). Every header of
-// rt includes this one, directly or through ray.h. Also here: RT_INLINE, the hash step MixWord
-// that every random number starts from, and dvec3, a vector in double whatever `real` is.
+// rt includes this one, directly or through ray.h. Also here: the hash step MixWord that every
+// random number starts from, and the exact powers of two with which SafeLength and SafeNormalize
+// measure a vector of 1e-300 or 1e300 without squaring it out of range.
 #pragma once
 
 #include <cmath>
@@ -24,13 +24,6 @@ const real kInfinity = std::numeric_limits<real>::infinity();
 
 // pi, rounded to `real` (the path tracer's densities and areas).
 const real kPi = real(3.14159265358979323846);
-
-// Always inlined: the speed machinery's small helpers (the kernel, the BVH build, the plane
-// test's common case), where a call would cost more than the work (GCC and clang).
-#define RT_INLINE inline __attribute__((always_inline))
-// Never inlined, and laid out apart: a rare path, kept out of the common one so that the function
-// that calls it stays small (GCC and clang).
-#define RT_COLD __attribute__((noinline, cold))
 
 // Unit roundoff u: the largest relative error of one correctly rounded operation (half an ulp
 // of 1). Every tolerance in rt is a multiple of u derived from an error bound, never a fixed
@@ -76,13 +69,7 @@ inline vec3 Cross(vec3 a, vec3 b) {
 inline real Length(vec3 a) { return std::sqrt(Dot(a, a)); }
 inline vec3 Normalize(vec3 a) { return (1 / Length(a)) * a; }
 inline vec3 Abs(vec3 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
-// The larger of each pair, as std::fmax answers (a NaN loses to a number; of +0 and -0, where
-// fmax may return either, the first), written out: std::fmax is a library call, 1% of the
-// assignment's time.
-inline real FMax(real a, real b) { return a >= b || b != b ? a : b; }
-inline vec3 Max(vec3 a, vec3 b) { return {FMax(a.x, b.x), FMax(a.y, b.y), FMax(a.z, b.z)}; }
-// a.x, a.y or a.z for axis 0, 1, 2 (the boxes of the committed scene and the BVH go axis by
-// axis): an indexed load, not a chain of branches
+// a.x, a.y or a.z for axis 0, 1, 2
 inline real Component(vec3 a, int axis) {
     const real c[3] = {a.x, a.y, a.z};
     return c[axis];
@@ -95,7 +82,7 @@ inline real MaxComponent(vec3 a) { // of |a|, for finite a
     return m > std::fabs(a.z) ? m : std::fabs(a.z);
 }
 
-// ---- numerics: exact rescaling by powers of two (the shape tests, shading, cameras) --------
+// ---- exact rescaling by powers of two (lengths, the sphere test, rays: robust/) -------------
 // Multiplying by a power of two changes only the exponent, so it is exact unless the result
 // leaves the range of numbers. rt rescales any vector whose squares could overflow or underflow
 // (a direction of 1e200 or 1e-200, a sphere of radius 1e-200) to a largest component in [1, 2),
@@ -103,7 +90,7 @@ inline real MaxComponent(vec3 a) { // of |a|, for finite a
 // had it not overflowed.
 
 // floor(log2 |x|) for finite x != 0: the exponent field, read directly (std::ilogb is a library
-// call, and the shape loop asks for it on every ray); subnormal x takes the library's path.
+// call, and every search asks for it); subnormal x takes the library's path.
 inline int BinaryExponent(real x) {
 #ifdef RT_FLOAT
     uint32_t bits;
@@ -134,27 +121,6 @@ inline real PowerOfTwo(int k) {
     return x;
 }
 
-// The number next to x toward +infinity (up) or -infinity: std::nextafter(x, +-infinity), bit
-// for bit, without the library call (every ray that leaves a surface and every tie in the shape
-// loop asks for it). Away from 0 the neighbour is the bit pattern one step further from or
-// nearer to 0; from 0 it is the smallest subnormal.
-inline real NextAfter(real x, bool up) {
-    if (x != x || (x == (up ? kInfinity : -kInfinity)))
-        return x; // NaN, or already the end it moves toward
-    if (x == 0)
-        return up ? std::numeric_limits<real>::denorm_min()
-                  : -std::numeric_limits<real>::denorm_min();
-#ifdef RT_FLOAT
-    uint32_t bits;
-#else
-    uint64_t bits;
-#endif
-    memcpy(&bits, &x, sizeof bits);
-    bits = (x > 0) == up ? bits + 1 : bits - 1;
-    memcpy(&x, &bits, sizeof x);
-    return x;
-}
-
 // x * 2^k and v * 2^k for any k (in two exact steps when 2^k itself is out of range).
 inline real ScaleByPowerOfTwo(real x, int k) {
     const int kMax = std::numeric_limits<real>::max_exponent - 1;
@@ -163,7 +129,7 @@ inline real ScaleByPowerOfTwo(real x, int k) {
     return PowerOfTwo(k - k / 2) * (PowerOfTwo(k / 2) * x);
 }
 inline vec3 ScaleByPowerOfTwo(vec3 v, int k) {
-    if (k == 0) // (most calls: nothing to rescale, and three multiplications by 1 saved)
+    if (k == 0) // (most calls: nothing to rescale)
         return v;
     return {ScaleByPowerOfTwo(v.x, k), ScaleByPowerOfTwo(v.y, k), ScaleByPowerOfTwo(v.z, k)};
 }
@@ -177,10 +143,6 @@ const int kLengthWindow = 4 * kDirectionWindow;
 inline bool WithinWindow(real m, int window) {
     return m >= PowerOfTwo(-window) && m <= PowerOfTwo(window);
 }
-
-// Whether a ray's direction is searched for as it is: inside the direction window, which
-// ScaleRay (geometry.cpp) leaves alone, and which the packets (packet.cpp) require.
-inline bool SearchedAsIs(vec3 dir) { return WithinWindow(MaxComponent(dir), kDirectionWindow); }
 
 // The power of two that brings v's largest component into [1, 2): v * 2^UnitExponent(v). 0 for
 // a zero or non-finite v (nothing to rescale).
@@ -206,8 +168,3 @@ inline vec3 SafeNormalize(vec3 v) {
     real length = Length(w);
     return length > 0 ? (1 / length) * w : w;
 }
-
-// A vector in double, whatever `real` is: plane.cpp's first tier computes in double.
-struct dvec3 {
-    double x, y, z;
-};

@@ -1,19 +1,21 @@
 // path.cpp -- `shading path`: the learning journal's diffuse scattering, as a path tracer.
 //
 // A pixel is the Monte Carlo estimate of the light that reaches the eye after any number of
-// bounces (Kajiya, "The Rendering Equation", SIGGRAPH 1986). Each sample follows one path: at a
-// diffuse surface of reflectance rho (the material's `diffuse`), whose BRDF is rho / pi, it adds
-// the light arriving straight from the lights (next-event estimation) and goes on in one random
-// direction; at a mirror or glass it goes on as the chain of rays does (shade.cpp), choosing
-// reflection or refraction at random in proportion to their shares. Emitting surfaces (`emit`)
-// give off their radiance on both sides; a point light of intensity I gives irradiance
-// I cos(theta) / r^2; a ray that escapes brings the background, light from every direction.
-// Random numbers come from a hash of (pixel, sample, bounce, dimension), so the image never
-// depends on the thread count. Pixels are written sRGB-encoded (render.cpp). The random numbers,
-// the scattered directions and the points drawn on emitters are in path_sampling.h.
+// bounces (Kajiya, "The Rendering Equation", SIGGRAPH 1986). The file opens with the journal's
+// estimator as Ray Tracing in One Weekend writes it (`--estimator journal`): a diffuse hit sends
+// the ray on toward normal + a random unit vector and multiplies what it brings back by the
+// reflectance, until a miss or the depth cap. rt's estimator (the default) is that one with four
+// steps beyond it, each marked: next-event estimation (the light arriving straight from the
+// lights, at every diffuse hit), multiple importance sampling (MIS), cosine sampling drawn
+// directly, and Russian roulette. Emitting surfaces (`emit`) give off their radiance on both
+// sides; a point light of intensity I gives irradiance I cos(theta) / r^2; a ray that escapes
+// brings the background, light from every direction. Random numbers come from a hash of (pixel,
+// sample, bounce, dimension), so the image never depends on the thread count; they, the
+// scattered directions and the points drawn on emitters are in path_sampling.h. Pixels are
+// written sRGB-encoded (render.cpp).
 #include "path_sampling.h"
 #include "render.h"
-#include "robust.h"
+#include "robust/robust.h"
 
 // The decisions of one bounce, each with a hash of its own (PathHash), and the hashes of its two
 // disk points: the scattered direction's and a point on an emitting sphere's (DiskPoint).
@@ -28,8 +30,6 @@ enum Decision {
 };
 static_assert(DECISIONS <= kDimensionsPerBounce, "each bounce's numbers must be its own");
 
-// ---- one path --------------------------------------------------------------------------------
-
 // A path being followed: its random numbers, the light gathered so far, the share of light the
 // next vertex passes on to the pixel, the ray to follow, and what the last bounce was.
 struct Path {
@@ -37,11 +37,11 @@ struct Path {
     const RenderSettings *settings;
     TraceLog *log;
     PathSample sample;
-    int bounce;     // 0 for the primary ray's vertex
-    color light;    // gathered so far
-    color through;  // the throughput: what the next vertex's light counts in the pixel
-    Ray ray;        // the ray to follow
-    RayStart start; // and what it must not hit (the surface it leaves)
+    int bounce;    // 0 for the primary ray's vertex
+    color light;   // gathered so far (rt's estimator)
+    color through; // the throughput: what the next vertex's light counts in the pixel
+    Ray ray;       // the ray to follow
+    SelfHit from;  // and what it must not hit (the surface it leaves)
     RayKind kind;
     real scatterPdf; // the density the last diffuse bounce drew the ray with; 0: not diffuse
     bool departs;    // the rays from this diffuse hit start at `departure` (Depart)
@@ -58,6 +58,99 @@ static real Random(const Path *path, Decision d) {
     return PathRandom(&path->sample, path->bounce, d);
 }
 
+// A mirror's or glass's next ray, picked by the number `pick` in [0, 1) in proportion to the
+// surface's shares: the mirror fraction K reflects; of the rest, glass reflects Fresnel's share R
+// and refracts the others (or reflects, under total internal reflection). Each choice is made
+// with the probability of its share, so the shares drop out of the estimate. Writes the ray that
+// leaves the surface (`out` may be `in`) and returns its kind.
+static RayKind MirrorOrGlass(const Ray *in, const RayHit *hit, const Material *m, real pick,
+                             const Methods *methods, Ray *out, SelfHit *from) {
+    vec3 d = SafeNormalize(in->dir), n = hit->normal;
+    if (pick < m->mirror) {
+        LeaveSurface(hit, Reflect(d, n), methods, out, from);
+        return RAY_REFLECTION;
+    }
+    real eta = hit->frontFace ? 1 / m->ior : m->ior, cosI = -Dot(d, n);
+    real reflectance = methods->fresnel == FRESNEL_SCHLICK ? SchlickReflectance(cosI, eta)
+                                                           : FresnelReflectance(cosI, eta);
+    vec3 refracted;
+    bool reflect = (pick - m->mirror) < reflectance * (1 - m->mirror) || // (the same number,
+                   !Refract(d, n, eta, &refracted);                      // past K)
+    LeaveSurface(hit, reflect ? Reflect(d, n) : refracted, methods, out, from);
+    return reflect ? RAY_REFLECTION : RAY_REFRACTION;
+}
+
+// ---- the journal's estimator -----------------------------------------------------------------
+
+// Ray Tracing in One Weekend's ray_color (§9.1), with its Lambertian, metal and dielectric
+// scattering (§9.4, §10, §11) and emitted light (The Next Week, §7), for ray number `number` of
+// the path, whose nearest hit has been searched for (`found`, *hit):
+//   colour = background                                    on a miss
+//          = emitted + attenuation * colour(scattered ray)  at a hit
+// and black for a ray past `depth`. A diffuse surface scatters toward normal + a random unit
+// vector, which has density cos(theta) / pi, so BRDF cos / density is the reflectance: the
+// attenuation. A mirror or glass attenuates by nothing. Light arrives only where a ray happens
+// to hit an emitting surface or escapes: a point light, which no ray can hit, lights nothing.
+static color JournalColor(Path *path, const Ray *ray, const SelfHit *from, RayKind kind,
+                          int number);
+
+static color JournalShade(Path *path, const Ray *ray, bool found, const RayHit *hit, int number) {
+    if (!found)
+        return path->scene->background;
+    const Material *m = &path->scene->materials[hit->material];
+    if (number == path->settings->depth) // the next ray would be one too many: black
+        return m->emit;
+    path->bounce = number - 1;
+    real pick = Random(path, PICK_SURFACE);
+    Ray next;
+    SelfHit leaving;
+    if (pick < m->mirror || m->ior > 0) {
+        RayKind kind = MirrorOrGlass(ray, hit, m, pick, &path->settings->methods, &next, &leaving);
+        return m->emit + JournalColor(path, &next, &leaving, kind, number + 1);
+    }
+    vec3 toward =
+        hit->normal + RandomUnitVector(DiskPoint(&path->sample, number - 1, SCATTER_DISK));
+    if (!(Dot(toward, hit->normal) > 0)) // the random vector all but -normal: no way out
+        toward = hit->normal;
+    LeaveSurface(hit, toward, &path->settings->methods, &next, &leaving);
+    return m->emit + m->diffuse * JournalColor(path, &next, &leaving, RAY_DIFFUSE, number + 1);
+}
+
+// A ray of the journal's path whose nearest hit has been searched for: counted, recorded in the
+// ray tree if one is being drawn (its colour is what it brings back), and shaded.
+static color JournalRay(Path *path, const Ray *ray, RayKind kind, bool found, const RayHit *hit,
+                        int number) {
+    TraceLog *log = path->log;
+    CountRay(kind, &log->stats);
+    int node = Record(kind, ray, log), parent = log->current;
+    log->current = node;
+    color result = JournalShade(path, ray, found, hit, number);
+    log->current = parent;
+    if (node >= 0) {
+        RayNode *n = &(*log->tree)[node];
+        n->hit = found;
+        if (found)
+            n->record = *hit;
+        n->light = result;
+    }
+    return result;
+}
+
+static color JournalColor(Path *path, const Ray *ray, const SelfHit *from, RayKind kind,
+                          int number) {
+    RayHit hit;
+    bool found =
+        FindNearestHitFrom(path->scene, path->settings->methods, ray, from, kInfinity, &hit);
+    return JournalRay(path, ray, kind, found, &hit, number);
+}
+
+// ---- rt's estimator: the journal's, and four steps beyond it --------------------------------
+
+// Step 1, next-event estimation: at every diffuse hit, the light that reaches it straight from the
+// point lights and the emitting shapes, each through a shadow ray, added to the path's light.
+// Rays leave the surface as LeaveSurface says; under the bound all of them to the side the normal
+// faces, so one offset point serves them all (Depart).
+
 // Where the rays from a diffuse hit start. All go to the side its normal faces (each is cast
 // only with cos theta > 0), and the self-hit bound moves the hit point off the surface to that
 // side whatever the direction (OffsetRayOrigin): one point, moved once a vertex. Under the other
@@ -69,12 +162,11 @@ static void Depart(Path *path, const RayHit *hit) {
 }
 
 // ShadowRay from the hit to `target`, from the departure point when there is one.
-static RT_INLINE bool CastShadow(const Path *path, const RayHit *hit, vec3 target, Ray *ray,
-                                 RayStart *start) {
+static bool CastShadow(const Path *path, const RayHit *hit, vec3 target, Ray *ray, SelfHit *from) {
     if (!path->departs)
-        return ShadowRay(hit, target, &path->settings->methods, ray, start);
+        return ShadowRay(hit, target, &path->settings->methods, ray, from);
     *ray = {path->departure, target - path->departure};
-    *start = StartLeaving(hit, hit->normal, ray->dir);
+    *from = StartLeaving(hit, hit->normal, ray->dir);
     return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
 }
 
@@ -103,21 +195,20 @@ const real kShortOfEmitter = real(0x1p-20);
 // nowhere before p). The search stops 2^-20 of the way short of p, so the shapes it does not look
 // at are e, those beyond it (the ceiling behind a lamp, which the box test, OutOfReach, refuses
 // before any plane test), and a shape within 2^-20 of the way in front of p, which touches e
-// there. (Looking for e itself, to just past p, took 6% more instructions on the Cornell box; it
-// took a p that the line misses by a rounding, on the very edge of e, as hidden; and under
-// --self-hit skip, which skips the sphere a ray leaves, a point on the inside of a glowing
-// sphere never saw the rest of it.)
+// there. (Looking for e itself, to just past p, would take a p that the line misses by a
+// rounding, on the very edge of e, as hidden; and under --self-hit skip, which skips the sphere a
+// ray leaves, a point on the inside of a glowing sphere would never see the rest of it.)
 static bool EmitterVisible(Path *path, const RayHit *hit, const Emitter *e, vec3 p) {
     const Methods *methods = &path->settings->methods;
     Ray shadow;
-    RayStart start;
-    if (!CastShadow(path, hit, p, &shadow, &start))
+    SelfHit from;
+    if (!CastShadow(path, hit, p, &shadow, &from))
         return false;
     path->log->stats.shadow++;
     int node = Record(RAY_SHADOW, &shadow, path->log);
     RayHit blocker;
     bool found =
-        FindNearestHitFrom(path->scene, *methods, &shadow, &start, 1 - kShortOfEmitter, &blocker);
+        FindNearestHitFrom(path->scene, *methods, &shadow, &from, 1 - kShortOfEmitter, &blocker);
     bool visible = !found || (blocker.shape == e->shape && blocker.index == e->index);
     if (node >= 0) {
         RayNode *n = &(*path->log->tree)[node];
@@ -140,11 +231,11 @@ static color PointLights(Path *path, const RayHit *hit, color rho) {
         if (!(cosTheta > 0))
             continue;
         Ray shadow;
-        RayStart start;
-        if (CastShadow(path, hit, light.position, &shadow, &start)) {
+        SelfHit from;
+        if (CastShadow(path, hit, light.position, &shadow, &from)) {
             path->log->stats.shadow++;
             int node = Record(RAY_SHADOW, &shadow, path->log);
-            bool blocked = AnyHitFrom(path->scene, path->settings->methods, &shadow, &start, 1);
+            bool blocked = AnyHitFrom(path->scene, path->settings->methods, &shadow, &from, 1);
             if (node >= 0)
                 (*path->log->tree)[node].hit = blocked;
             if (blocked)
@@ -157,7 +248,7 @@ static color PointLights(Path *path, const RayHit *hit, color rho) {
 
 // Next-event estimation for the emitting shapes: one emitter picked uniformly, one point on it
 // picked uniformly by area, its light times the BRDF and cos(theta) over the density of picking
-// it, weighted against the scattered ray's chance of finding the same point (MIS).
+// it, weighted against the scattered ray's chance of finding the same point (step 2, MIS).
 static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
     const std::vector<Emitter> &emitters = path->settings->effects.emitters;
     if (emitters.empty() || path->settings->path.lights == LIGHTS_NONE)
@@ -186,7 +277,10 @@ static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
     return (weight * cosTheta / (kPi * pdf)) * (rho * e->emit);
 }
 
-// The share of an emitter's light that a path adds when its ray hits it: all of it after the
+// Step 2, multiple importance sampling (Veach 1997): a point of an emitter can be found two ways,
+// by next-event estimation and by a scattered ray that hits it; each counts with a weight, and the
+// weights of the two ways add up to 1 (PowerHeuristic). The share of an emitter's light that a
+// path adds when its ray hits it: all of it after the
 // camera or a mirror or glass (no next-event estimation could have found that point), none
 // when next-event estimation alone counts emitters, and under MIS the scattered ray's weight.
 static real EmissionWeight(const Path *path, const RayHit *hit) {
@@ -203,58 +297,33 @@ static real EmissionWeight(const Path *path, const RayHit *hit) {
     return PowerHeuristic(path->scatterPdf, pdf);
 }
 
-// A mirror's or glass's next ray, picked by the number `pick` (Bounce); false at the last
-// vertex, where none follows. The unit incoming direction is made only here: a diffuse
-// bounce, most of them, does not need it.
-static bool Specular(Path *path, const RayHit *hit, const Material *m, real pick, bool last) {
-    if (last)
-        return false;
-    const Methods *methods = &path->settings->methods;
-    vec3 d = SafeNormalize(path->ray.dir), n = hit->normal;
-    if (pick < m->mirror) {
-        LeaveSurface(hit, Reflect(d, n), methods, &path->ray, &path->start);
-        return true;
-    }
-    real eta = hit->frontFace ? 1 / m->ior : m->ior, cosI = -Dot(d, n);
-    real reflectance = methods->fresnel == FRESNEL_SCHLICK ? SchlickReflectance(cosI, eta)
-                                                           : FresnelReflectance(cosI, eta);
-    vec3 refracted;
-    bool reflect = (pick - m->mirror) < reflectance * (1 - m->mirror) || // (the same number,
-                   !Refract(d, n, eta, &refracted);                      // past K)
-    if (!reflect)
-        path->kind = RAY_REFRACTION;
-    LeaveSurface(hit, reflect ? Reflect(d, n) : refracted, methods, &path->ray, &path->start);
-    return true;
-}
-
 // The next ray of the path from a hit on material m, and what the bounce does to the
 // throughput; false if the path ends here. One random number picks what the surface does, in
-// proportion to its shares: the mirror fraction K reflects; of the rest, glass reflects
-// Fresnel's share R and refracts the others; a diffuse surface adds the light that reaches it
-// from the lights and scatters. Each choice is made with the probability of its share, so the
-// shares themselves drop out of the throughput.
+// proportion to its shares (MirrorOrGlass); a diffuse surface adds the light that reaches it
+// from the lights (step 1) and scatters (step 3).
 // At the last vertex a chain allows (`last`), no ray follows: a diffuse surface still adds the
 // light straight from the lights, as the other shadings' shadow rays do at any depth.
 static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) {
     real pick = Random(path, PICK_SURFACE);
     path->scatterPdf = 0;
-    path->kind = RAY_REFLECTION;
-    if (pick < m->mirror || m->ior > 0)
-        return Specular(path, hit, m, pick, last);
+    if (pick < m->mirror || m->ior > 0) {
+        if (last)
+            return false;
+        path->kind = MirrorOrGlass(&path->ray, hit, m, pick, &path->settings->methods, &path->ray,
+                                   &path->from);
+        return true;
+    }
     color rho = m->diffuse;
     if (!(MaxComponent(rho) > 0)) // black: it scatters nothing, not even the lights' light
         return false;
-    Depart(path, hit);
-    // The emitters' shadow ray first, then the point lights' (the order the ray tree has always
-    // shown). A scene without point lights skips PointLights, whose sum would be 0: the same
-    // image, a call less
+    Depart(path, hit); // step 1: the emitters' shadow ray first, then the point lights'
     color direct = Emitters(path, hit, rho, last);
     if (!path->scene->lights.empty())
         direct = PointLights(path, hit, rho) + direct;
     path->light = path->light + path->through * direct;
     if (last)
         return false;
-    ScatterMethod method = path->settings->path.scatter;
+    ScatterMethod method = path->settings->path.scatter; // step 3: cosine sampling, drawn
     vec3 n = hit->normal;
     vec3 dir = ScatterDirection(method, n, DiskPoint(&path->sample, path->bounce, SCATTER_DISK));
     real cosTheta = Dot(dir, n);
@@ -267,16 +336,16 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
                     (method == SCATTER_COSINE ? rho : (cosTheta / (kPi * path->scatterPdf)) * rho);
     path->kind = RAY_DIFFUSE;
     if (!path->departs)
-        LeaveSurface(hit, dir, &path->settings->methods, &path->ray, &path->start);
+        LeaveSurface(hit, dir, &path->settings->methods, &path->ray, &path->from);
     else
-        path->ray = {path->departure, dir}, path->start = StartLeaving(hit, hit->normal, dir);
+        path->ray = {path->departure, dir}, path->from = StartLeaving(hit, hit->normal, dir);
     return true;
 }
 
-// Russian roulette (Arvo & Kirk, "Particle Transport and Image Synthesis", SIGGRAPH 1990): a
-// path whose throughput has fallen to q < 1 goes on with probability q, its throughput divided
-// by q, so the expected light is unchanged while dim paths end early. From the third ray on, so
-// the first bounces, which carry most of the light, are always followed.
+// Step 4, Russian roulette (Arvo & Kirk, "Particle Transport and Image Synthesis", SIGGRAPH 1990):
+// a path whose throughput has fallen to q < 1 goes on with probability q, its throughput divided by
+// q, so the expected light is unchanged while dim paths end early. From the third ray on, so the
+// first bounces, which carry most of the light, are always followed.
 static bool Survives(Path *path) {
     real q = std::min(real(1), MaxComponent(path->through));
     if (q >= 1)
@@ -307,49 +376,109 @@ color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *p
                 int j, int s, TraceLog *log) {
     RayHit hit;
     bool found =
-        FindNearestHitFrom(scene, settings->methods, primary, &kFromTheEye, kInfinity, &hit);
+        FindNearestHitFrom(scene, settings->methods, primary, &kNoSelfHit, kInfinity, &hit);
     return TraceFoundPath(scene, settings, primary, found, &hit, i, j, s, log);
 }
 
-color TraceFoundPath(const Scene *scene, const RenderSettings *settings, const Ray *primary,
-                     bool foundFirst, const RayHit *firstHit, int i, int j, int s, TraceLog *log) {
-    PathSample sample = PathKey(settings->path.seed, i, j, s);
-    // Set member by member (a member added to Path must be set here too): written as one
-    // aggregate, the whole struct was first cleared by a `rep stos`, slow to start, once a path.
-    Path path;
-    path.scene = scene, path.settings = settings, path.log = log;
-    path.sample = sample, path.bounce = 0, path.light = {0, 0, 0}, path.through = {1, 1, 1};
-    path.ray = *primary, path.start = kFromTheEye, path.kind = RAY_PRIMARY;
-    path.scatterPdf = 0, path.departs = false, path.departure = {0, 0, 0};
+// rt's estimator, one vertex a turn: the emitted light of what the ray hit (weighted by MIS),
+// then the bounce, until a miss, the depth cap, or roulette.
+static color FullPath(Path *path, bool foundFirst, const RayHit *firstHit) {
+    const Scene *scene = path->scene;
+    const RenderSettings *settings = path->settings;
+    TraceLog *log = path->log;
     std::vector<PathNode> nodes;
     int parent = log->current;
-    for (int number = 1; number <= settings->depth; number++, path.bounce++) {
-        CountRay(path.kind, &log->stats);
-        int node = Record(path.kind, &path.ray, log);
+    for (int number = 1; number <= settings->depth; number++, path->bounce++) {
+        CountRay(path->kind, &log->stats);
+        int node = Record(path->kind, &path->ray, log);
         if (node >= 0)
-            nodes.push_back({node, path.light, path.through});
+            nodes.push_back({node, path->light, path->through});
         RayHit hit;
         bool found = number == 1 ? foundFirst // the eye ray's, found already
-                                 : FindNearestHitFrom(scene, settings->methods, &path.ray,
-                                                      &path.start, kInfinity, &hit);
+                                 : FindNearestHitFrom(scene, settings->methods, &path->ray,
+                                                      &path->from, kInfinity, &hit);
         if (number == 1 && found)
             hit = *firstHit;
         if (node >= 0 && ((*log->tree)[node].hit = found))
             (*log->tree)[node].record = hit;
         if (!found) {
-            path.light = path.light + path.through * scene->background;
+            path->light = path->light + path->through * scene->background;
             break;
         }
         const Material *m = &scene->materials[hit.material];
         if (Emits(m))
-            path.light = path.light + EmissionWeight(&path, &hit) * (path.through * m->emit);
+            path->light = path->light + EmissionWeight(path, &hit) * (path->through * m->emit);
         log->current = node;
-        if (!Bounce(&path, &hit, m, number == settings->depth) ||
-            (!settings->path.noRoulette && number >= 2 && !Survives(&path)))
+        if (!Bounce(path, &hit, m, number == settings->depth) ||
+            (!settings->path.noRoulette && number >= 2 && !Survives(path)))
             break;
     }
     log->current = parent;
     if (log->tree)
-        FinishTree(&path, nodes);
-    return path.light;
+        FinishTree(path, nodes);
+    return path->light;
+}
+
+color TraceFoundPath(const Scene *scene, const RenderSettings *settings, const Ray *primary,
+                     bool found, const RayHit *hit, int i, int j, int s, TraceLog *log) {
+    Path path = {scene,      settings,    log,       PathKey(settings->path.seed, i, j, s),
+                 0,          {0, 0, 0},   {1, 1, 1}, *primary,
+                 kNoSelfHit, RAY_PRIMARY, 0,         false,
+                 {0, 0, 0}};
+    if (settings->path.estimator == ESTIMATOR_JOURNAL)
+        return JournalRay(&path, primary, RAY_PRIMARY, found, hit, 1);
+    return FullPath(&path, found, hit);
+}
+
+// ---- emitters: the shapes whose material has `emit` ------------------------------------------
+
+// A triangle's (b - a) x (c - a) with both edges first multiplied by 2^*k, the power of two
+// that brings the larger edge's largest component into [1, 2): unscaled, the product of two
+// edges of 1e200 (or 1e-200) would overflow (or underflow); scaled, its direction is exact and
+// its length is 2^2k times the true one.
+static vec3 ScaledEdgeCross(const Triangle *t, int *k) {
+    vec3 e1 = t->b - t->a, e2 = t->c - t->a;
+    *k = UnitExponent(MaxComponent(e1) > MaxComponent(e2) ? e1 : e2);
+    return Cross(ScaleByPowerOfTwo(e1, *k), ScaleByPowerOfTwo(e2, *k));
+}
+
+real EmitterSqrtArea(const Scene *scene, const Emitter *e) {
+    if (e->shape == SHAPE_SPHERE) // area 4 pi r^2
+        return std::sqrt(4 * kPi) * scene->spheres[e->index].radius;
+    int k; // area |e1 x e2| / 2, from the scaled cross product: 2^-2k |n| / 2
+    vec3 n = ScaledEdgeCross(&scene->triangles[e->index], &k);
+    return ScaleByPowerOfTwo(std::sqrt(real(0.5) * SafeLength(n)), -k);
+}
+
+// An emitting shape, with what every light sample reads: its area's square root, (a triangle) its
+// unit normal, and its radiance, once per render.
+static Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index) {
+    Emitter e = {shape, index, 0, {0, 0, 0}, {0, 0, 0}};
+    e.sqrtArea = EmitterSqrtArea(scene, &e);
+    if (shape == SHAPE_SPHERE) {
+        e.emit = scene->materials[scene->spheres[index].material].emit;
+        return e;
+    }
+    const Triangle *t = &scene->triangles[index];
+    int k; // (the scale is not needed: only the direction)
+    e.normal = SafeNormalize(ScaledEdgeCross(t, &k));
+    e.emit = scene->materials[t->material].emit;
+    return e;
+}
+
+void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters) {
+    auto emits = [scene](int material) { return Emits(&scene->materials[material]); };
+    // (A shape without area, or of an area beyond the range of numbers, can be neither hit nor
+    // sampled: it is left out, so no density is ever divided by 0 or infinity.)
+    auto add = [scene, emitters](ShapeKind shape, int index) {
+        Emitter e = MakeEmitter(scene, shape, index);
+        if (e.sqrtArea > 0 && std::isfinite(e.sqrtArea))
+            emitters->push_back(e);
+    };
+    for (int i = 0; i < (int)scene->spheres.size(); i++)
+        if (emits(scene->spheres[i].material))
+            add(SHAPE_SPHERE, i);
+    for (int i = 0; i < (int)scene->triangles.size(); i++)
+        if (emits(scene->triangles[i].material))
+            add(SHAPE_TRIANGLE, i);
 }

@@ -1,6 +1,6 @@
 // path_sampling.h -- the path tracer's random numbers, directions and points on emitters: the
-// Monte Carlo half of `shading path`, each formula with its source. Included by path.cpp alone,
-// so that these short functions inline into the path loop as they would in one file.
+// Monte Carlo half of `shading path`, each formula with its source. Included by path.cpp alone
+// (its functions are static, as they would be in one file).
 #pragma once
 #include "ray.h"
 #include "render.h"
@@ -66,9 +66,9 @@ static real ScatterPdf(ScatterMethod method, real cosTheta) {
 // no sine or cosine, which cost more than the tries. A path's numbers are keyed by their use, so
 // the tries are bounded: if all kDiskTries miss (a chance of (1 - pi/4)^5, about 1 in 2,200),
 // one more pair gives the point by radius and angle, r = sqrt(u), phi = 2 pi v, which is
-// uniform too; either way the point is uniform. (Inline: GCC called it, twice a path vertex.)
+// uniform too; either way the point is uniform.
 const int kDiskTries = 5, kDiskDimensions = kDiskTries + 1;
-static RT_INLINE vec2 DiskPoint(const PathSample *p, int bounce, int first) {
+static inline vec2 DiskPoint(const PathSample *p, int bounce, int first) {
     for (int k = 0; k < kDiskTries; k++) {
         vec2 u = PathRandomPair(p, bounce, first + k);
         real x = 2 * u.x - 1, y = 2 * u.y - 1; // exact: 24 bits of [0, 1)
@@ -114,14 +114,20 @@ static real PowerHeuristic(real a, real b) {
 
 // ---- emitters: the shapes whose material has `emit` (PlanEffects lists them) ---------------
 
-// A point drawn uniformly over an emitting sphere, and the unit normal there, from a uniform
-// point (x, y) of the unit disk: the height z = 1 - 2 r^2, uniform in (-1, 1] (Archimedes
-// again), and the rest of the unit normal (x, y) times 2 sqrt(1 - r^2), which makes its length
-// 1 (Marsaglia, "Choosing a Point from the Surface of a Sphere", 1972).
-static void SampleSphere(const Sphere *s, vec2 disk, vec3 *p, vec3 *n) {
+// A uniform random unit vector (the journal's random_unit_vector), from a uniform point (x, y)
+// of the unit disk: the height z = 1 - 2 r^2, uniform in (-1, 1] (Archimedes again), and the
+// rest (x, y) times 2 sqrt(1 - r^2), which makes its length 1 (Marsaglia, "Choosing a Point from
+// the Surface of a Sphere", 1972).
+static vec3 RandomUnitVector(vec2 disk) {
     real r2 = disk.x * disk.x + disk.y * disk.y;
     real stretch = 2 * std::sqrt(std::max(real(0), 1 - r2)); // (as in ScatterDirection)
-    *n = {stretch * disk.x, stretch * disk.y, 1 - 2 * r2};
+    return {stretch * disk.x, stretch * disk.y, 1 - 2 * r2};
+}
+
+// A point drawn uniformly over an emitting sphere, and the unit normal there: a random unit
+// vector from the centre.
+static void SampleSphere(const Sphere *s, vec2 disk, vec3 *p, vec3 *n) {
+    *n = RandomUnitVector(disk);
     *p = s->center + s->radius * *n;
 }
 

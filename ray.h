@@ -1,20 +1,15 @@
 // ray.h -- the map of rt, a teaching ray tracer: what a scene is, and how a ray meets it.
 //
 // In reading order: the structs of the course handouts (Ray, Perspective, Camera, RayHit, Sphere,
-// Triangle, Material, Light, Scene); the choice of numerical methods; then the functions of the
-// handouts' first steps, grouped by the file that defines them: the cameras, the nearest hit,
-// rays that leave a surface, scene files. Plain data, free functions, no globals.
-// How a render lights and samples what the rays hit (shading, mirrors, glass, paths, the render
-// loop) is in render.h. Beside them, by role: numbers.h, the numbers and vectors (`real` is
-// double, or float when built with -DRT_FLOAT, the ray_float program); layout.h, the committed
-// scene and its fast search; robust.h, what the robust triangle test's files share; io.h, image
-// files, text, OBJ meshes, probes and debug views.
+// Triangle, Material, Light, Scene); the choice of numerical methods; then the functions, grouped
+// by the file that defines them: the cameras, where rays meet shapes, the built-in scenes. How a
+// render lights what the rays hit is in render.h. Plain data, free functions, no globals.
+// Beside this core, by role: robust/ (the robust triangle test and the rescaling of rays, called
+// at marked lines), fast/ (speed machinery, which main installs behind one seam: Accelerator,
+// below) and app/ (the command line, files, probes). The core includes none of fast/ and app/.
 #pragma once
 
 #include "numbers.h"
-
-// SceneLayout, which Scene holds: speed machinery, to skip on a first reading
-#include "layout.h"
 
 #include <cstdint>
 #include <string>
@@ -78,8 +73,8 @@ struct RayHit {
     ShapeKind shape; // which array the shape is in
     int index;       // index of the shape in that array
     vec3 pointError; // |point - exact hit point| <= pointError, per axis
-    real awayShare;  // a triangle's (watertight method): how plainly a ray must leave it to pass
-                     // over it (PassesOver); 0: it never does
+    real awayShare;  // a triangle's (robust method): how plainly a ray must leave it to pass
+                     // over it (PassesOver, robust/robust.h); 0: it never does
 };
 
 struct Sphere {
@@ -120,6 +115,8 @@ enum ShadingModel {
                    // bounces, estimated by Monte Carlo paths (path.cpp)
 };
 
+struct Accelerator; // speed machinery behind the searches (the seam, below)
+
 // Everything a render needs to know about the world. Shapes name materials by index.
 struct Scene {
     int width, height; // image size in pixels
@@ -134,22 +131,19 @@ struct Scene {
     std::vector<Light> lights;
     std::vector<std::string> meshFiles; // the OBJ files `mesh` statements read, as opened: inputs
                                         // that an output must not replace
-    SceneLayout layout; // set by CommitScene; the shape loop uses it only while it is current
-    std::vector<std::string> warnings; // what the reader found legal but probably not meant
-                                       // ("FILE:LINE: warning: ..."); main prints them
+    std::vector<std::string> warnings;  // what the reader found legal but probably not meant
+                                        // ("FILE:LINE: warning: ..."); main prints them
+    const Accelerator *accelerator = nullptr; // installed by main (fast/); null: every search
+                                              // is the plain loop of geometry.cpp
 };
 
-// True while scene->layout was built from as many triangles as the scene holds.
-inline bool LayoutIsCurrent(const Scene *scene) {
-    return scene->layout.committed && scene->layout.triangleCount == scene->triangles.size();
-}
+// An 8-bit RGB image, rows from the top, 3 bytes a pixel.
+struct Image {
+    int width, height;
+    std::vector<uint8_t> pixels;
+};
 
-// True while scene->layout's sphere blocks were built from as many spheres as the scene holds.
-inline bool SpheresAreCurrent(const Scene *scene) {
-    return scene->layout.committed && scene->layout.sphereCount == scene->spheres.size();
-}
-
-// ---- the numerical methods: robust, or the handouts' (geometry.cpp, handout.cpp, shade.cpp) --
+// ---- the numerical methods: robust, or the handouts' -----------------------------------------
 
 // The numerical methods of a render: the robust defaults, or each method the course documents
 // describe, as a careful student writes it (`--methods handout`), to teach with and to show in
@@ -195,12 +189,6 @@ const Methods kRobustMethods = {SPHERE_STABLE, TRIANGLE_WATERTIGHT, SELF_HIT_BOU
 const Methods kHandoutMethods = {SPHERE_TEXTBOOK, TRIANGLE_CRAMER,   SELF_HIT_EPSILON,
                                  real(1e-4),      CAMERA_RAY_SLIDES, FRESNEL_SCHLICK};
 
-// An 8-bit RGB image, rows from the top, 3 bytes a pixel.
-struct Image {
-    int width, height;
-    std::vector<uint8_t> pixels;
-};
-
 // ---- camera.cpp: the cameras -----------------------------------------------------------------
 
 // The assignment's GetRay(Perspective, vec2, Ray*), in rt's form: the ray from the eye through
@@ -224,24 +212,7 @@ void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord,
 bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen,
                     std::string *error);
 
-// Whether a `camera screen` can make a ray through every pixel: h and v non-zero and not parallel,
-// and the eye off the screen's plane (else every ray lies in that plane). False with *error.
-bool ScreenCameraIsValid(const Camera *camera, std::string *error);
-
-// A screen camera's edges fix its shape, so its image must keep it, or the pixels would not be
-// square: whether a W x H image does, for edges of lengths h and v (to within 1 part in 256).
-bool SquarePixels(double W, double H, double h, double v);
-
-// The size nearest `width` wide whose pixels are square for edges h and v (SquarePixels); false
-// if none up to 16384 x 16384 is.
-bool SquareSize(int width, double h, double v, int *W, int *H);
-
-// Whether a screen camera's edges are not at right angles, to the same 1 part in 256 (the cosine
-// of their angle): its pixels are then parallelograms, which a size can make equal-sided but not
-// square.
-bool ScreenIsSheared(const Camera *camera);
-
-// ---- geometry.cpp: ray/shape intersection ----------------------------------------------------
+// ---- geometry.cpp: where rays meet shapes ----------------------------------------------------
 
 // Writes the fields every shape fills the same way; `outwardNormal` must be unit length.
 // The normal is turned to face the incoming ray, and frontFace records which side it came from;
@@ -253,24 +224,25 @@ inline void SetFaceNormal(const Ray *ray, vec3 outwardNormal, RayHit *hit) {
 
 // Each intersect function returns true only for a hit with t in the open interval (tMin, tMax);
 // it then fills *hit and leaves it untouched on a miss. ray->dir need not be unit length, but
-// must not be zero.
-bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit);
-bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tMax,
-                             RayHit *hit); // handout.cpp
-bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit);
+// must not be zero. The handouts' own forms (the slide's quadratic, Cramer's rule, the second
+// handout's plane test), then rt's robust ones (the stable sphere; the watertight triangle,
+// robust/watertight.cpp).
+bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit);
 bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                              RayHit *hit);
 bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit);
+bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit);
+bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit);
 
-// What a ray must not count as a hit besides t outside its interval: hits at t <= tMin, and the
-// shape it leaves (index -1: none). Set by LeaveSurface and ShadowRay from the self-hit method;
-// a ray from the eye starts kFromTheEye.
-struct RayStart {
+// What a ray that leaves a surface must not count as a hit, besides t past tMax: hits at
+// t <= tMin, and the shape it leaves (index -1: none). Set by LeaveSurface and ShadowRay from the
+// self-hit method; a ray from the eye has kNoSelfHit.
+struct SelfHit {
     real tMin;
     ShapeKind shape;
     int index;
 };
-const RayStart kFromTheEye = {0, SHAPE_SPHERE, -1};
+const SelfHit kNoSelfHit = {0, SHAPE_SPHERE, -1};
 
 // The nearest hit over every shape of the scene with t in (tMin, tMax): the one loop that serves
 // primary, reflection and refraction rays.
@@ -280,45 +252,58 @@ bool FindNearestHit(const Scene *scene, Methods methods, const Ray *ray, real tM
 // True if any shape is hit with t in (tMin, tMax); stops at the first. Serves shadow rays.
 bool AnyHit(const Scene *scene, Methods methods, const Ray *ray, real tMin, real tMax);
 
-// The same two questions for a ray that starts as `start` says, with t in (start->tMin, tMax).
-bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
+// The same two questions for a ray that leaves a surface, with t in (from->tMin, tMax).
+bool FindNearestHitFrom(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from,
                         real tMax, RayHit *hit);
-
-bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const RayStart *start,
+bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from,
                 real tMax);
 
+// FindNearestHit(rays[k], 0, infinity) for `count` rays from the eye (a pixel's samples, at most
+// kEyeRaysTogether): found[k] and hits[k] are exactly what it gives each. An accelerator may
+// search them together.
+const int kEyeRaysTogether = 8;
+void FindEyeRayHits(const Scene *scene, Methods methods, const Ray *rays, int count, RayHit *hits,
+                    bool *found);
+
 // The ray that leaves a hit in direction dir, and what it must not hit, by the self-hit method:
-// bound, from OffsetRayOrigin (robust.h), passing over the triangle it leaves where PassesOver
-// (robust.h); epsilon, from the hit point, ignoring hits closer than methods->epsilon; skip, from
-// the hit point, ignoring the shape it leaves.
-void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray, RayStart *start);
+// bound, from OffsetRayOrigin (robust/robust.h), passing over the triangle it leaves where
+// PassesOver; epsilon, from the hit point, ignoring hits closer than methods->epsilon; skip,
+// from the hit point, ignoring the shape it leaves.
+void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray, SelfHit *from);
 
 // The shadow ray from a hit to a light at lightPosition, leaving the surface as LeaveSurface
-// does, with t = 1 at the light, so a blocker is any hit in (start->tMin, 1). False if the light
+// does, with t = 1 at the light, so a blocker is any hit in (from->tMin, 1). False if the light
 // is where the ray starts, where nothing can be in between.
 bool ShadowRay(const RayHit *hit, vec3 lightPosition, const Methods *methods, Ray *ray,
-               RayStart *start);
+               SelfHit *from);
 
-// ---- scene_file.cpp: scene files (docs/scene-format.md) -----------------------------------------
+// ---- the seam: speed machinery that main may install (fast/) --------------------------------
 
-// The scene a file starts from: nothing in it, 512 x 512, `camera perspective 0 0 0 2 2`,
-// ambient 0.2, floor shading, black background, depth 10.
-void InitScene(Scene *scene);
+// The plain loop over the list of shapes, as the handouts write it: every search above, where no
+// accelerator is installed. (anyHit: stop at the first hit, as AnyHit does.)
+bool SearchList(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from, real tMax,
+                bool anyHit, RayHit *hit);
 
-// Reads a scene file. On failure returns false with *error = "FILE:LINE: message".
-bool ReadSceneFile(const char *path, Scene *scene, std::string *error);
-
-// Reads a scene from text, naming it fileName in errors.
-bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
-                    std::string *error);
-
-// What a render of the scene would hide without a word, for warnings: a point light inside a
-// sphere (its shadow rays end on it, so nothing outside is lit by that light), and the eye rays'
-// start (the eye, or under the slides' rays the screen's centre) inside a sphere that is not
-// glass (the image shows its inside). One line each, no prefix.
-std::vector<std::string> InsideWarnings(const Scene *scene, vec3 eyeRaysStart);
+// Another way to answer the searches above, bit for bit as SearchList answers, only faster: the
+// shapes in blocks tested several at a time, a bounding volume hierarchy over the triangles, a
+// pixel's eye rays tested together (fast/fast.h). main installs one in scene->accelerator; the
+// core calls it at one marked line and never looks inside. `search` answers every search it is
+// given, as SearchList does (and runs SearchList itself where it cannot, as for the handouts'
+// methods); `eyeRays` gets what FindEyeRayHits gets, and sets answered[k] for each ray whose
+// found[k] and hits[k] it wrote, leaving the others to FindNearestHit.
+struct Accelerator {
+    const void *layout; // what it searches (fast/: the committed scene)
+    bool (*search)(const Accelerator *self, const Scene *scene, Methods methods, const Ray *ray,
+                   const SelfHit *from, real tMax, bool anyHit, RayHit *hit);
+    void (*eyeRays)(const Accelerator *self, const Scene *scene, Methods methods, const Ray *rays,
+                    int count, RayHit *hits, bool *found, bool *answered);
+};
 
 // ---- scene_default.cpp, scene_test.cpp: the built-in scenes ----------------------------------
+
+// The scene every scene starts from: nothing in it, 512 x 512, `camera perspective 0 0 0 2 2`,
+// ambient 0.2, floor shading, black background, depth 10.
+void InitScene(Scene *scene);
 
 void BuildDefaultScene(Scene *scene); // the assignment scene (the handout's scene;
                                       // scenes/reference.scene holds it as a file)

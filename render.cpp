@@ -6,7 +6,7 @@
 // from camera.cpp.
 // Each pixel is computed the same way whichever thread takes it, so the image never depends on
 // the thread count; threads take whole rows from a shared counter, so no core waits while work
-// remains.
+// remains. Also here: PlanRender, what a render decides once before its first pixel.
 #include "render.h"
 #include "ray.h"
 
@@ -72,10 +72,9 @@ static GridCell FindCell(int s, int n) {
     int first = n * row / rows;
     return {rows, row, first, n * (row + 1) / rows - first};
 }
-// The cell of sample s, from the cell of sample s - 1: the same row until it is full, then the
-// next row, which starts where that one ended (every row holds at least one cell: n / rows >=
-// rows). A pixel's samples, taken in order, then cost one division a row, not FindCell's dozen a
-// sample (8% of the assignment image's time at 16 samples).
+// The cell of sample s, from the cell of sample s - 1: the grid walked row by row, the same row
+// until it is full, then the next, which starts where that one ended (every row holds at least
+// one cell: n / rows >= rows). A pixel's samples, taken in order, need no FindCell of their own.
 static GridCell NextCell(const GridCell *previous, int s, int n) {
     int first = previous->first + previous->count, row = previous->row + 1;
     if (s < first)
@@ -122,33 +121,26 @@ static color TraceSample(const Scene *scene, const RenderSettings *settings, vec
     GetCameraRay(&settings->camera, settings->width, settings->height, position, &ray);
     if (scene->shading == SHADING_PATH)
         return TracePath(scene, settings, &ray, i, j, s, log);
-    return TraceRay(scene, settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, log);
+    return TraceRay(scene, settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, log);
 }
 
-// Samples first .. first + count - 1 of pixel (i, j) (count at most kLanes) at `positions`,
-// added to *sum in turn, with the same colours, in the same order, as one by one: their eye rays
-// searched for together (a packet where the kernel can), then traced on as the scene says
-// (TraceEyeRays, TracePath).
+// Samples first .. first + count - 1 of pixel (i, j) (count at most kEyeRaysTogether) at
+// `positions`, added to *sum in turn, with the colours TraceSample gives them, in the same order:
+// their eye rays' nearest hits found together (FindEyeRayHits, where an accelerator may take them
+// as a packet), then each traced on as the scene says.
 static void AddSamples(const Scene *scene, const RenderSettings *settings, const vec2 *positions,
                        int i, int j, int first, int count, TraceLog *log, color *sum) {
-    if (!PacketsPay(scene, settings->methods, count)) { // one by one
-        for (int k = 0; k < count; k++)
-            *sum = *sum + TraceSample(scene, settings, positions[k], i, j, first + k, log);
-        return;
-    }
-    Ray rays[kLanes];
+    Ray rays[kEyeRaysTogether];
+    RayHit hits[kEyeRaysTogether];
+    bool found[kEyeRaysTogether];
     for (int k = 0; k < count; k++)
         GetCameraRay(&settings->camera, settings->width, settings->height, positions[k], &rays[k]);
-    if (scene->shading != SHADING_PATH) {
-        TraceEyeRays(scene, settings, rays, count, log, sum);
-        return;
-    }
-    RayHit hits[kLanes];
-    bool found[kLanes];
-    FindNearestHitsFromEye(scene, settings->methods, rays, count, hits, found);
+    FindEyeRayHits(scene, settings->methods, rays, count, hits, found);
     for (int k = 0; k < count; k++)
-        *sum = *sum +
-               TraceFoundPath(scene, settings, &rays[k], found[k], &hits[k], i, j, first + k, log);
+        *sum = *sum + (scene->shading == SHADING_PATH
+                           ? TraceFoundPath(scene, settings, &rays[k], found[k], &hits[k], i, j,
+                                            first + k, log)
+                           : TraceFoundEyeRay(scene, settings, &rays[k], found[k], &hits[k], log));
 }
 
 // Whether samples differ, in any channel clamped to [0, 1], by more than kAdaptiveContrast.
@@ -263,27 +255,35 @@ static color PixelColor(const Scene *scene, const RenderSettings *settings, int 
     } else if (n == 1) { // the pixel's centre, as GridPosition places the one sample of one cell
         result = TraceSample(scene, settings, {i + real(0.5), j + real(0.5)}, i, j, 0, &log);
     } else {
-        bool jitter = settings->sampling != SAMPLES_GRID && n > 1;
+        bool jitter = settings->sampling != SAMPLES_GRID;
         GridCell cell = *firstCell;
-        // kLanes samples at a time where packets pay (PacketsPay), else one at a time
-        int group = n > 1 && PacketsPay(scene, settings->methods, std::min(n, kLanes)) ? kLanes : 1;
-        for (int first = 0; first < n; first += group) {
-            int count = std::min(group, n - first);
-            vec2 p[kLanes];
+        for (int first = 0; first < n; first += kEyeRaysTogether) { // a few samples at a time
+            int count = std::min(kEyeRaysTogether, n - first);
+            vec2 p[kEyeRaysTogether];
             for (int s = first; s < first + count; s++) {
                 cell = NextCell(&cell, s, n);
                 p[s - first] =
                     jitter ? JitterPosition(i, j, &cell, s, 0) : GridPosition(i, j, &cell, s);
             }
-            if (count == 1)
-                result = result + TraceSample(scene, settings, p[0], i, j, first, &log);
-            else
-                AddSamples(scene, settings, p, i, j, first, count, &log, &result);
+            AddSamples(scene, settings, p, i, j, first, count, &log, &result);
         }
         result = (real(1) / n) * result;
     }
     AddStats(&log.stats, stats);
     return result;
+}
+
+void PlanRender(const Scene *scene, RenderSettings *settings) {
+    PlanEffects(scene, settings, &settings->effects);
+    settings->camera = scene->camera;
+    settings->camera.perspective.widthPixels = settings->width;
+    settings->camera.perspective.heightPixels = settings->height;
+    settings->camera.toCorner = scene->camera.lowerLeft - scene->camera.eye;
+    std::string unused;
+    if (scene->camera.kind == CAMERA_LOOKAT) // checked when the scene was read
+        LookAtToScreen(&scene->camera, settings->width, settings->height, &settings->camera,
+                       &unused);
+    settings->camera.fromScreen = settings->methods.cameraRay == CAMERA_RAY_SLIDES;
 }
 
 color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int j,

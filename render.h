@@ -1,7 +1,7 @@
 // render.h -- how a render lights and samples what the rays hit: the render's settings, the
-// effects a scene calls for, chains and trees of rays (shade.cpp); lighting, mirrors and glass
-// (shade.cpp); the path tracer of `shading path` (path.cpp); the render loop on all cores and its
-// sampling (render.cpp). The scene, the cameras and the nearest hit are ray.h's.
+// effects a scene calls for, chains and trees of rays; lighting, mirrors and glass (shade.cpp);
+// the path tracer of `shading path` (path.cpp); the render loop on all cores and its sampling
+// (render.cpp). The scene, the cameras and the nearest hit are ray.h's.
 #pragma once
 #include "ray.h"
 
@@ -41,13 +41,19 @@ enum SampleMethod {
 };
 
 // Adaptive sampling refines a pixel when its first five samples (centre and corners) differ by
-// more than this in a channel (0..1), or their rays met different shapes. Measured at 256 x 256
-// and 16 spp against 256-spp references: 1/64, 1/32 and 1/16 give the same error (within 0.1%) on
-// the assignment and test scenes, because the shapes decide at edges; 1/16 casts the fewest rays.
+// more than this in a channel (0..1), or their rays met different shapes. At edges the shapes
+// decide, so a finer contrast buys no accuracy there (docs/accuracy-and-time.md): a sixteenth,
+// a step a viewer sees in a smooth gradient, casts the fewest rays.
 const real kAdaptiveContrast = real(1) / 16;
 
 // How `shading path` estimates the light a diffuse surface scatters (path.cpp), each choice
-// selectable so that `make bench` can compare them.
+// selectable so that `make bench` can compare them. The journal's estimator, as Ray Tracing in
+// One Weekend writes it, or rt's, which adds the steps below.
+enum Estimator {
+    ESTIMATOR_FULL,   // next-event estimation, MIS, cosine sampling, roulette (the default)
+    ESTIMATOR_JOURNAL // scatter by normal + a random unit vector, times the reflectance, until a
+                      // miss or the depth cap; light only from what a ray hits
+};
 enum ScatterMethod {
     SCATTER_COSINE, // directions drawn with density cos(theta) / pi (Ray Tracing in One Weekend's
                     // normal + random_unit_vector): the default
@@ -62,6 +68,7 @@ enum LightMethod {
 };
 // The defaults are all zero, so `{}` asks for them.
 struct PathMethods {
+    Estimator estimator;
     ScatterMethod scatter;
     LightMethod lights;
     bool noRoulette; // only `depth` ends paths (biased); else Russian roulette does (unbiased)
@@ -139,22 +146,21 @@ struct TraceLog {
 
 // ---- shade.cpp: lighting and the ray chain ---------------------------------------------------
 
-// Why a lit render of this scene can only be one flat colour, for a warning: it has no shapes
-// (every pixel is the background), or nothing gives light (no light, a black background, and
-// ambient 0, or under `shading path` no material that emits): every pixel is black. Empty if
-// neither. (A warning, not an error: a test scene may mean it.)
-std::string OneColourWarning(const Scene *scene);
-
 // Decides which effects a render of this scene with these settings can need (see Effects).
 void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects);
 
-// Colour seen along `ray`, a ray of the given kind at `chain` in its chain, starting as `start`
-// says (kFromTheEye for a primary ray). Counts it, and every ray it leads to, in log->stats (and
-// records them in log->tree if that is set).
+// Colour seen along `ray`, a ray of the given kind at `chain` in its chain, leaving a surface as
+// `from` says (kNoSelfHit for a primary ray). Counts it, and every ray it leads to, in log->stats
+// (and records them in log->tree if that is set).
 color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
-               const RayStart *start, RayChain chain, TraceLog *log);
+               const SelfHit *from, RayChain chain, TraceLog *log);
 
-// Counts a ray of this kind (inline: every ray of a path is counted).
+// TraceRay for a primary ray whose nearest hit has been found already (FindEyeRayHits): `found`,
+// and *hit where it is.
+color TraceFoundEyeRay(const Scene *scene, const RenderSettings *settings, const Ray *ray,
+                       bool found, const RayHit *hit, TraceLog *log);
+
+// Counts a ray of this kind.
 inline void CountRay(RayKind kind, RayStats *stats) {
     switch (kind) {
     case RAY_PRIMARY:
@@ -197,11 +203,6 @@ real SchlickReflectance(real cosI, real eta);
 // Whether a material gives off light (`emit` above 0 in some channel).
 inline bool Emits(const Material *m) { return m->emit.x > 0 || m->emit.y > 0 || m->emit.z > 0; }
 
-// The square root of an emitting shape's surface area (where PlanEffects finds the emitters): a
-// length, like the distances it is divided into, so that their ratio, unlike an area and a
-// squared distance, stays in the range of numbers at every scale.
-real EmitterSqrtArea(const Scene *scene, const Emitter *e);
-
 // ---- path.cpp: `shading path` -----------------------------------------------------------------
 
 // The light along `primary`, the camera ray of sample s of pixel (i, j), after any number of
@@ -209,6 +210,21 @@ real EmitterSqrtArea(const Scene *scene, const Emitter *e);
 // in log->tree if that is set.
 color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, int i,
                 int j, int s, TraceLog *log);
+
+// TracePath for an eye ray whose nearest hit has been found already (FindEyeRayHits): `found`,
+// and *hit where it is.
+color TraceFoundPath(const Scene *scene, const RenderSettings *settings, const Ray *primary,
+                     bool found, const RayHit *hit, int i, int j, int s, TraceLog *log);
+
+// The shapes whose material emits, for next-event estimation (PlanEffects): each with its area's
+// square root, its normal (a triangle's) and its radiance. Shapes without area, or of an area
+// beyond the range of numbers, are left out: they can be neither hit nor sampled.
+void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters);
+
+// The square root of an emitting shape's surface area (FindEmitters): a
+// length, like the distances it is divided into, so that their ratio, unlike an area and a
+// squared distance, stays in the range of numbers at every scale.
+real EmitterSqrtArea(const Scene *scene, const Emitter *e);
 
 // ---- render.cpp: the render loop -------------------------------------------------------------
 

@@ -19,74 +19,6 @@ static bool MaterialIsUsed(const Scene *scene, int material) {
     return false;
 }
 
-// A triangle's (b - a) x (c - a) with both edges first multiplied by 2^*k, the power of two
-// that brings the larger edge's largest component into [1, 2): unscaled, the product of two
-// edges of 1e200 (or 1e-200) would overflow (or underflow); scaled, its direction is exact and
-// its length is 2^2k times the true one.
-static vec3 ScaledEdgeCross(const Triangle *t, int *k) {
-    vec3 e1 = t->b - t->a, e2 = t->c - t->a;
-    *k = UnitExponent(MaxComponent(e1) > MaxComponent(e2) ? e1 : e2);
-    return Cross(ScaleByPowerOfTwo(e1, *k), ScaleByPowerOfTwo(e2, *k));
-}
-
-real EmitterSqrtArea(const Scene *scene, const Emitter *e) {
-    if (e->shape == SHAPE_SPHERE) // area 4 pi r^2
-        return std::sqrt(4 * kPi) * scene->spheres[e->index].radius;
-    int k; // area |e1 x e2| / 2, from the scaled cross product: 2^-2k |n| / 2
-    vec3 n = ScaledEdgeCross(&scene->triangles[e->index], &k);
-    return ScaleByPowerOfTwo(std::sqrt(real(0.5) * SafeLength(n)), -k);
-}
-
-// An emitting shape, with what every light sample reads: its area's square root, (a triangle) its
-// unit normal, and its radiance, once per render.
-static Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index) {
-    Emitter e = {shape, index, 0, {0, 0, 0}, {0, 0, 0}};
-    e.sqrtArea = EmitterSqrtArea(scene, &e);
-    if (shape == SHAPE_SPHERE) {
-        e.emit = scene->materials[scene->spheres[index].material].emit;
-        return e;
-    }
-    const Triangle *t = &scene->triangles[index];
-    int k; // (the scale is not needed: only the direction)
-    e.normal = SafeNormalize(ScaledEdgeCross(t, &k));
-    e.emit = scene->materials[t->material].emit;
-    return e;
-}
-
-// `shading path`: the shapes whose material emits, for next-event estimation.
-static void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters) {
-    auto emits = [scene](int material) { return Emits(&scene->materials[material]); };
-    // (A shape without area, or of an area beyond the range of numbers, can be neither hit nor
-    // sampled: it is left out, so no density is ever divided by 0 or infinity.)
-    auto add = [scene, emitters](ShapeKind shape, int index) {
-        Emitter e = MakeEmitter(scene, shape, index);
-        if (e.sqrtArea > 0 && std::isfinite(e.sqrtArea))
-            emitters->push_back(e);
-    };
-    for (int i = 0; i < (int)scene->spheres.size(); i++)
-        if (emits(scene->spheres[i].material))
-            add(SHAPE_SPHERE, i);
-    for (int i = 0; i < (int)scene->triangles.size(); i++)
-        if (emits(scene->triangles[i].material))
-            add(SHAPE_TRIANGLE, i);
-}
-
-std::string OneColourWarning(const Scene *scene) {
-    if (scene->spheres.empty() && scene->triangles.empty())
-        return "the scene has no shapes: every pixel is the background colour";
-    color b = scene->background;
-    bool anyEmit = false; // (a material that emits, whether or not a shape uses it)
-    for (const Material &m : scene->materials)
-        anyEmit = anyEmit || Emits(&m);
-    bool unlit = scene->shading == SHADING_PATH ? !anyEmit : scene->ambient == 0;
-    if (scene->lights.empty() && unlit && b.x == 0 && b.y == 0 && b.z == 0)
-        return scene->shading == SHADING_PATH
-                   ? "nothing gives off light (no light, no material that emits, a black "
-                     "background): every pixel is black"
-                   : "no light, ambient 0 and a black background: every pixel is black";
-    return "";
-}
-
 void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects) {
     bool shapes = !scene->spheres.empty() || !scene->triangles.empty();
     bool lights = !scene->lights.empty(), path = scene->shading == SHADING_PATH;
@@ -127,7 +59,6 @@ struct Shading {
     const Scene *scene;
     const RenderSettings *settings;
     TraceLog *log;
-    const KnownShadows *known; // the surface's shadow rays, already cast (TraceEyeRays); or null
 };
 
 // The surface being shaded: the ray that found it, the hit, its material, and where that ray
@@ -140,23 +71,17 @@ struct Surface {
 };
 
 // Whether the segment from the hit point to the light is free of shapes (ShadowRay: every hit
-// with t in (tMin, 1) blocks). Without shapes that could block (Effects), no ray is needed.
-// Its answer may be known already: the same ray, cast with others (TraceEyeRays).
+// with t in (tMin, 1) blocks): the assignment's hard shadow. Without shapes that could block
+// (Effects), no ray is needed.
 static bool LightIsVisible(const Shading *sh, const RayHit *hit, const Light *light) {
     const Methods *methods = &sh->settings->methods;
-    size_t l = (size_t)(light - sh->scene->lights.data());
-    ShadowAnswer known =
-        sh->known && l < kKnownLights ? (ShadowAnswer)sh->known->answer[l] : SHADOW_UNKNOWN;
     Ray shadow;
-    RayStart start;
-    if (!sh->settings->effects.shadows || known == SHADOW_NO_RAY ||
-        (known == SHADOW_UNKNOWN && !ShadowRay(hit, light->position, methods, &shadow, &start)))
+    SelfHit from;
+    if (!sh->settings->effects.shadows || !ShadowRay(hit, light->position, methods, &shadow, &from))
         return true;
     sh->log->stats.shadow++;
-    if (known != SHADOW_UNKNOWN || !sh->log->tree) {
-        bool blocked = known != SHADOW_UNKNOWN
-                           ? known == SHADOW_BLOCKED
-                           : AnyHitFrom(sh->scene, *methods, &shadow, &start, 1);
+    if (!sh->log->tree) {
+        bool blocked = AnyHitFrom(sh->scene, *methods, &shadow, &from, 1);
         if (sh->settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads it
             sh->log->surfaces = MixSurface(sh->log->surfaces, blocked);
         return !blocked;
@@ -165,7 +90,7 @@ static bool LightIsVisible(const Shading *sh, const RayHit *hit, const Light *li
     // Recording a ray tree: find the nearest blocker, so the tree can show which shape it is
     int node = RecordRay(RAY_SHADOW, &shadow, sh->log);
     RayNode *n = &(*sh->log->tree)[node];
-    n->hit = FindNearestHitFrom(sh->scene, *methods, &shadow, &start, 1, &n->record);
+    n->hit = FindNearestHitFrom(sh->scene, *methods, &shadow, &from, 1, &n->record);
     n->light = n->hit ? color{0, 0, 0} : light->intensity;
     return !n->hit;
 }
@@ -183,8 +108,8 @@ static color FloorColor(const Shading *sh, const Surface *s) {
             continue;
         sum = sum + (nDotL / SafeLength(toLight)) * light.intensity; // handout: N.normalize(L)
     }
-    real ambient = sh->scene->ambient;
-    return s->m->diffuse * Max(color{ambient, ambient, ambient}, sum);
+    real a = sh->scene->ambient; // handout: kd * max(ambient, N.L)
+    return s->m->diffuse * color{std::max(a, sum.x), std::max(a, sum.y), std::max(a, sum.z)};
 }
 
 // The second handout's Phong lighting (`shading phong`):
@@ -291,9 +216,9 @@ static color FollowRay(const Shading *sh, const Surface *s, RayKind kind, vec3 d
     if (next.number > sh->settings->depth || next.weight < kMinRayWeight)
         return {0, 0, 0};
     Ray ray;
-    RayStart start;
-    LeaveSurface(s->hit, dir, &sh->settings->methods, &ray, &start);
-    return TraceRay(sh->scene, sh->settings, kind, &ray, &start, next, sh->log);
+    SelfHit from;
+    LeaveSurface(s->hit, dir, &sh->settings->methods, &ray, &from);
+    return TraceRay(sh->scene, sh->settings, kind, &ray, &from, next, sh->log);
 }
 
 // Clear glass: Fresnel's share R of the reflected ray plus 1 - R of the refracted one. Entering
@@ -336,18 +261,21 @@ static color ShadeHit(const Shading *sh, const Surface *s) {
     return result;
 }
 
-// TraceRay's second half, for a ray recorded as `node` whose nearest hit has been searched for:
-// the colour it brings back, and the tree's record of it.
-static color ShadeNearest(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                          RayChain chain, int node, bool found, RayHit *hit,
-                          const KnownShadows *known, TraceLog *log) {
+// The colour a ray brings back, once its nearest hit has been searched for (`found`, *hit): the
+// background on a miss, else the hit surface shaded (which may cast more rays). Counts the ray
+// and records it in the tree, if one is being drawn.
+static color ShadeFound(const Scene *scene, const RenderSettings *settings, RayKind kind,
+                        const Ray *ray, RayChain chain, bool found, const RayHit *hit,
+                        TraceLog *log) {
+    CountRay(kind, &log->stats);
+    int node = RecordRay(kind, ray, log);
     if (settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads the hash
         log->surfaces = MixSurface(log->surfaces, found ? 2 * hit->index + hit->shape + 1 : 0);
     color result = scene->background;
     if (found) {
         int parent = log->current;
         log->current = node;
-        Shading sh = {scene, settings, log, known};
+        Shading sh = {scene, settings, log};
         Surface surface = {ray, hit, &scene->materials[hit->material], chain};
         result = ShadeHit(&sh, &surface);
         log->current = parent;
@@ -363,18 +291,13 @@ static color ShadeNearest(const Scene *scene, const RenderSettings *settings, co
 }
 
 color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
-               const RayStart *start, RayChain chain, TraceLog *log) {
-    CountRay(kind, &log->stats);
-    int node = RecordRay(kind, ray, log);
+               const SelfHit *from, RayChain chain, TraceLog *log) {
     RayHit hit;
-    bool found = FindNearestHitFrom(scene, settings->methods, ray, start, kInfinity, &hit);
-    return ShadeNearest(scene, settings, ray, chain, node, found, &hit, nullptr, log);
+    bool found = FindNearestHitFrom(scene, settings->methods, ray, from, kInfinity, &hit);
+    return ShadeFound(scene, settings, kind, ray, chain, found, &hit, log);
 }
 
 color TraceFoundEyeRay(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                       bool found, RayHit *hit, const KnownShadows *known, TraceLog *log) {
-    CountRay(RAY_PRIMARY, &log->stats);
-    int node = RecordRay(RAY_PRIMARY, ray, log);
-    return ShadeNearest(scene, settings, ray, RayChain{1, 1}, node, found, hit,
-                        log->tree ? nullptr : known, log);
+                       bool found, const RayHit *hit, TraceLog *log) {
+    return ShadeFound(scene, settings, RAY_PRIMARY, ray, RayChain{1, 1}, found, hit, log);
 }

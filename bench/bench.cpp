@@ -25,9 +25,10 @@
 // kMinSeconds (render only, all threads), with the fastest and the slowest of them beside it
 // (the CSV's last columns, seconds_min and seconds_max); errors are against a converged
 // reference: double, 256 samples per pixel on a grid.
-#include "../io.h"
+#include "../app/app.h"
+#include "../fast/fast.h"
+#include "../ray.h"
 #include "../tests/hard_cases.h"
-#include "ray.h"
 #include "svg.h"
 
 #include <algorithm>
@@ -167,7 +168,8 @@ static bool Reference(const std::string &dir, const BenchScene &b, const Scene *
 static void SceneRows(const std::string &dir, const BenchScene &b) {
     Scene scene;
     b.build(&scene);
-    CommitScene(&scene, LAYOUT_AUTO, 1); // as ./ray commits it: every time is the program's
+    SceneLayout layout;
+    CommitScene(&scene, LAYOUT_AUTO, 1, &layout); // as ./ray commits it: every time the program's
     Image reference;
     if (!Reference(dir, b, &scene, &reference)) {
         fprintf(stderr, "bench: no reference image for %s in %s\n", b.name, dir.c_str());

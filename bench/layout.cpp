@@ -8,8 +8,8 @@
 // committed layout's size, and what its memory costs to touch for the first time on this machine
 // (a floor under any build that writes it). Writes DIR/layout.md (the table) and DIR/layout.svg
 // (the log-log plot).
+#include "../fast/fast.h"
 #include "../render.h"
-#include "ray.h"
 #include "svg.h"
 
 #include <algorithm>
@@ -120,17 +120,19 @@ static double FreshPageMicroseconds() {
 
 static Row MeasureRow(int level) {
     Row row;
-    Scene list = SphereMesh(level), tree;
+    Scene list = SphereMesh(level), tree = list;
+    SceneLayout listLayout, treeLayout;
     row.triangles = list.triangles.size();
-    for (int round = 0; round < kRounds; round++) { // each build on a fresh copy of the scene
-        tree = list;
+    for (int round = 0; round < kRounds; round++) { // each build into a fresh layout
+        SceneLayout fresh;
         auto start = std::chrono::steady_clock::now();
-        CommitScene(&tree, LAYOUT_BVH);
+        CommitScene(&tree, LAYOUT_BVH, 2, &fresh);
         std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - start;
         row.commit.ms.push_back(ms.count());
     }
-    row.layoutBytes = LayoutBytes(&tree.layout);
-    CommitScene(&list, LAYOUT_LIST);
+    CommitScene(&tree, LAYOUT_BVH, 2, &treeLayout);
+    row.layoutBytes = LayoutBytes(&treeLayout);
+    CommitScene(&list, LAYOUT_LIST, 2, &listLayout);
     for (int round = 0; round < kRounds; round++) { // in turn: the same load for both
         if (row.triangles <= kMostForList)
             TimeRender(&list, &row.list);

@@ -6,7 +6,8 @@
 // 2/255) at scales 1e-4, 1, 1e4 and 1e6 and moved far from the origin, where a method's failures
 // show as acne, lost shadows and cracks (and, at any scale, as ties: a ray exactly through a
 // shared edge may take either triangle, both right). Prints Markdown.
-#include "../io.h"
+#include "../app/app.h"
+#include "../fast/fast.h"
 #include "../tests/hard_cases.h"
 #include "../tests/robust_scenes.h"
 #include "svg.h"
@@ -105,7 +106,7 @@ static std::vector<RayNode> CentreTree(const Scene *scene, Methods methods, int 
     TraceLog log = {RayStats{}, &tree, -1, 0};
     Ray ray;
     GetCameraRay(&settings.camera, 128, 128, SamplePosition(i, j, 0, 1), &ray);
-    TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
+    TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
     return tree;
 }
 
@@ -345,7 +346,8 @@ int MethodsTable(const char *folder) {
     BuildTestScene(&test);
     // Committed as ./ray commits it, so each render time is what the option costs in the program:
     // the blocks and packets serve the robust tests only, and the handouts' run the plain loop
-    CommitScene(&test, LAYOUT_AUTO, 1);
+    SceneLayout layout;
+    CommitScene(&test, LAYOUT_AUTO, 1, &layout);
     std::vector<PlotPoint> plot;
     SphereRows(test, &plot);
     TriangleRows(test, &plot);

@@ -9,8 +9,8 @@
 // machine load; its time is the median, min and max. Writes DIR/path.md (the table and
 // sentences worded from it; two times whose ranges overlap are the same within noise) and
 // DIR/path_SCENE.svg (error against time, log-log).
-#include "../io.h"
-#include "ray.h"
+#include "../app/app.h"
+#include "../ray.h"
 #include "svg.h"
 
 #include <algorithm>
@@ -39,13 +39,29 @@ struct PathMethod {
 };
 
 static const PathMethod kMethods[] = {
-    {"cosine + MIS", {SCATTER_COSINE, LIGHTS_MIS, false, 0}, SAMPLES_JITTER, 0},
-    {"uniform + MIS", {SCATTER_UNIFORM, LIGHTS_MIS, false, 0}, SAMPLES_JITTER, 0},
-    {"cosine + NEE only", {SCATTER_COSINE, LIGHTS_NEE, false, 0}, SAMPLES_JITTER, 0},
-    {"cosine, no NEE", {SCATTER_COSINE, LIGHTS_NONE, false, 0}, SAMPLES_JITTER, 0},
-    {"fixed cap of 3 rays", {SCATTER_COSINE, LIGHTS_MIS, true, 0}, SAMPLES_JITTER, 3},
-    {"fixed cap of 10 rays", {SCATTER_COSINE, LIGHTS_MIS, true, 0}, SAMPLES_JITTER, 10},
-    {"adaptive (at most N)", {SCATTER_COSINE, LIGHTS_MIS, false, 0}, SAMPLES_ADAPTIVE, 0},
+    {"cosine + MIS", {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 0}, SAMPLES_JITTER, 0},
+    {"uniform + MIS", {ESTIMATOR_FULL, SCATTER_UNIFORM, LIGHTS_MIS, false, 0}, SAMPLES_JITTER, 0},
+    {"cosine + NEE only",
+     {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NEE, false, 0},
+     SAMPLES_JITTER,
+     0},
+    {"cosine, no NEE", {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 0}, SAMPLES_JITTER, 0},
+    {"fixed cap of 3 rays",
+     {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, true, 0},
+     SAMPLES_JITTER,
+     3},
+    {"fixed cap of 10 rays",
+     {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, true, 0},
+     SAMPLES_JITTER,
+     10},
+    {"adaptive (at most N)",
+     {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 0},
+     SAMPLES_ADAPTIVE,
+     0},
+    {"the journal's estimator",
+     {ESTIMATOR_JOURNAL, SCATTER_COSINE, LIGHTS_MIS, true, 0},
+     SAMPLES_JITTER,
+     0},
 };
 
 static double Render(const Scene *scene, PathMethods path, SampleMethod sampling, int spp,
@@ -75,7 +91,8 @@ static void Reference(const Scene *scene, const char *folder, const char *name, 
     std::string path = std::string(folder) + "/ref_path_" + name + ".png", error;
     if (sizeof(real) != sizeof(double) && ReadImage(path.c_str(), image, &error))
         return;
-    Render(scene, {SCATTER_COSINE, LIGHTS_MIS, false, 99}, SAMPLES_JITTER, kReferenceSpp, 0, image);
+    Render(scene, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 99}, SAMPLES_JITTER,
+           kReferenceSpp, 0, image);
     if (sizeof(real) == sizeof(double) && !WriteImage(path.c_str(), image, &error))
         fprintf(stderr, "bench: %s\n", error.c_str());
 }
@@ -164,7 +181,9 @@ static void Compare(FILE *md, const std::vector<PathRow> &rows, const std::strin
 }
 
 static const char *kColours[] = {"black",     "crimson",   "darkorange", "seagreen",
-                                 "steelblue", "slateblue", "orchid"};
+                                 "steelblue", "slateblue", "orchid",     "saddlebrown"};
+static_assert(sizeof kColours / sizeof kColours[0] >= sizeof kMethods / sizeof kMethods[0],
+              "a colour for each method");
 
 // One method's line: a point a sample count (its median time, a whisker from min to max), and
 // the sample counts written by the points of the first method's line.
@@ -252,6 +271,7 @@ int PathTable(const char *folder) {
         Compare(md, rows, scene, "cosine + MIS", "cosine + NEE only");
         Compare(md, rows, scene, "adaptive (at most N)", "cosine + MIS");
         Compare(md, rows, scene, "cosine + MIS", "fixed cap of 3 rays");
+        Compare(md, rows, scene, "cosine + MIS", "the journal's estimator");
     }
     fclose(md);
     if (isDouble) {

@@ -5,7 +5,7 @@
 // distance from the origin with each camera, and spheres and triangles of every size. Prints
 // Markdown; the tests (tests/test_long_triangles.cpp, test_ranges.cpp) assert the documented
 // parts of it.
-#include "../render.h"
+#include "../app/app.h"
 #include "../tests/robust_scenes.h"
 
 #include <cstdio>

@@ -1,6 +1,6 @@
 // tests/exercise.cpp -- one input through the scene reader, the renderer and the probe reader.
 #include "exercise.h"
-#include "../io.h"
+#include "../app/app.h"
 
 // Scenes larger than this are read but not rendered: the fuzzer should spend its time reading.
 static const size_t kMaxShapesToRender = 64;
@@ -30,7 +30,7 @@ static bool RenderTiny(const Scene *scene, std::string *why) {
             TraceLog log = {RayStats{}, &tree, -1, 0};
             Ray ray;
             GetCameraRay(&settings.camera, 4, 4, SamplePosition(i, j, 0, 1), &ray);
-            TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
+            TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
             if (!TreeIsFinite(tree, why)) {
                 *why = "pixel (" + std::to_string(i) + ", " + std::to_string(j) + "): " + *why;
                 return false;

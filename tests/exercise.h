@@ -2,7 +2,7 @@
 #ifndef RT_EXERCISE_H
 #define RT_EXERCISE_H
 
-#include "ray.h"
+#include "../ray.h"
 
 // Reads `text` as a scene file; if it reads, renders it at 4 x 4 and probes every line of the
 // text as a probe line. Returns false with *why if anything is wrong: an error message without

@@ -7,7 +7,7 @@
 // values they are computed here in long double from the same inputs. The self-intersection (OFF)
 // cases are in hard_cases_offset.cpp.
 
-#include "../io.h"
+#include "../app/app.h"
 #include "hard_cases_suite.h"
 
 #include <cstdint>

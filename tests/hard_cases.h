@@ -7,7 +7,7 @@
 #ifndef RT_HARD_CASES_H
 #define RT_HARD_CASES_H
 
-#include "ray.h"
+#include "../ray.h"
 
 typedef bool (*SphereRoutine)(const Sphere *, const Ray *, real, real, RayHit *);
 typedef bool (*TriangleRoutine)(const Triangle *, const Ray *, real, real, RayHit *);

@@ -15,7 +15,7 @@ static int SelfShadowed(const Suite *s, const Triangle &ground, vec3 eye, vec3 l
         if (!s->triangle(&ground, &ray, 0, kInfinity, &hit))
             continue;
         Ray shadow;
-        RayStart start;
+        SelfHit start;
         acne += ShadowRay(&hit, light, &kRobustMethods, &shadow, &start) &&
                 s->triangle(&ground, &shadow, 0, 1, &hit);
     }
@@ -62,7 +62,7 @@ void OffsetRows(Suite *s) {
         RayHit p, blocker;
         bool found = s->triangle(&ground, &up, 0, kInfinity, &p);
         Ray shadow;
-        RayStart start;
+        SelfHit start;
         found = found && ShadowRay(&p, light, &kRobustMethods, &shadow, &start);
         bool ballShadows = found && s->sphere(&ball, &shadow, 0, 1, &blocker);
         bool sheetShadows = found && s->triangle(&sheet, &shadow, 0, 1, &blocker);
@@ -83,7 +83,7 @@ void OffsetRows(Suite *s) {
                     !(Dot(hit.normal, light - hit.point) > 0))
                     continue;
                 Ray shadow;
-                RayStart start;
+                SelfHit start;
                 rays++;
                 acne += ShadowRay(&hit, light, &kRobustMethods, &shadow, &start) &&
                         s->sphere(&ball, &shadow, 0, 1, &again);

@@ -1,6 +1,6 @@
 // tests/robust_scenes.cpp -- the scenes of rt's robustness claims (robust_scenes.h).
 #include "robust_scenes.h"
-#include "robust.h"
+#include "../robust/robust.h"
 
 #include <cstdio>
 

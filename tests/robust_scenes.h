@@ -3,7 +3,7 @@
 #ifndef RT_ROBUST_SCENES_H
 #define RT_ROBUST_SCENES_H
 
-#include "ray.h"
+#include "../ray.h"
 
 // p turned by 0.7 radians about the axis (1, 2, 3) when `turn`, computed in long double and
 // rounded once: the corners of a turned shape are no longer on the grid of the unturned one.

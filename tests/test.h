@@ -6,7 +6,7 @@
 #ifndef RT_TEST_H
 #define RT_TEST_H
 
-#include "ray.h"
+#include "../render.h"
 
 #include <string>
 

@@ -1,7 +1,7 @@
 // tests/test_compare.cpp -- `ray --compare` from the outside: PNG and PPM (binary and plain,
 // any largest sample, through a pipe), exit 0 within the tolerance and 1 outside it, a heat map
 // with -o, and every file it cannot read refused with a message that says why.
-#include "../io.h"
+#include "../app/app.h"
 #include "test.h"
 
 #include <cstdint>

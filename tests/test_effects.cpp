@@ -3,6 +3,7 @@
 // Ray counts predicted exactly (counted independently of the shading code), the effects each
 // scene plans, Snell's law, total internal reflection and Fresnel worked by hand for a glass
 // sphere, and Phong highlights, including the cases that must give no highlight and no NaN.
+#include "../app/app.h"
 #include "../render.h"
 #include "test.h"
 
@@ -126,7 +127,7 @@ static std::vector<RayNode> GlassTree(vec3 origin, vec3 dir) {
     std::vector<RayNode> tree;
     TraceLog log = {RayStats{}, &tree, -1, 0};
     Ray ray = {origin, dir};
-    TraceRay(&scene, &s, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
+    TraceRay(&scene, &s, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
     return tree;
 }
 
@@ -213,7 +214,7 @@ static color PhongAt(vec3 eye, vec3 lightPosition, real shininess, RayStats *sta
     RenderSettings s = TestSettings(&scene);
     TraceLog log = {RayStats{}, nullptr, -1, 0};
     Ray ray = {eye, vec3{0, 0, 0} - eye};
-    color c = TraceRay(&scene, &s, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
+    color c = TraceRay(&scene, &s, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
     *stats = log.stats;
     return c;
 }

@@ -2,8 +2,8 @@
 //
 // The handout's advice: a scene, a ray, the hit you predicted. Each row is worked out on paper
 // from |o + t d - c| = r; the Ray Tracer Challenge's canonical cases are among them.
+#include "../robust/robust.h"
 #include "hard_cases.h"
-#include "robust.h"
 #include "test.h"
 
 #include <cstring>

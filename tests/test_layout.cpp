@@ -1,11 +1,12 @@
 // tests/test_layout.cpp -- the committed scene answers exactly what the plain loop answers.
 //
-// The fast layout (commit.cpp, kernel.cpp) promises the very bits of the reference functions:
-// the same t, point, normal, error bound and shape, with or without the BVH, in double and in
-// float. Each check here asks the same question four ways: the scene as written (the plain
-// loop of watertight.cpp), committed as one list of blocks, committed with a BVH, and with the
-// BVH through the kernel's other copy, and compares every field of the answers.
-#include "../render.h"
+// The fast layout (fast/: commit.cpp, kernel.cpp) promises the very bits of the plain loop (the
+// same t, point, normal, error bound and shape), with or without the BVH, in double and in float.
+// Each check here asks the same question four ways: the scene as written (the plain loop of
+// geometry.cpp, no accelerator), committed as one list of blocks, committed with a BVH, and with
+// the BVH through the kernel's other copy, and compares every field of the answers.
+#include "../fast/fast.h"
+#include "../robust/robust.h"
 #include "hard_cases.h"
 #include "robust_scenes.h"
 #include "test.h"
@@ -21,13 +22,15 @@ static const bool kDouble = sizeof(real) == sizeof(double);
 const int kWays = 4;
 struct Layouts {
     Scene plain, list, tree, other;
+    SceneLayout listLayout, treeLayout, otherLayout;
 };
 static void MakeLayouts(const Scene &scene, Layouts *l) {
-    l->plain = scene, l->list = scene, l->tree = scene, l->other = scene; // (copies: uncommitted)
-    CommitScene(&l->list, LAYOUT_LIST);
-    CommitScene(&l->tree, LAYOUT_BVH);
-    CommitScene(&l->other, LAYOUT_BVH);
-    l->other.layout.wide = false;
+    l->plain = scene, l->list = scene, l->tree = scene, l->other = scene;
+    l->plain.accelerator = nullptr; // the plain loop
+    CommitScene(&l->list, LAYOUT_LIST, 2, &l->listLayout);
+    CommitScene(&l->tree, LAYOUT_BVH, 2, &l->treeLayout);
+    CommitScene(&l->other, LAYOUT_BVH, 2, &l->otherLayout);
+    l->otherLayout.vectors = false;
 }
 
 // One ray asked all four ways, nearest hit and any hit, from the eye and leaving the shape it
@@ -48,7 +51,7 @@ static bool SameAnswers(const Layouts *l, const Ray *ray, real tMin, real tMax) 
     Methods skip = kRobustMethods;
     skip.selfHit = SELF_HIT_SKIP;
     Ray next;
-    RayStart start;
+    SelfHit start;
     LeaveSurface(&hits[0], Reflect(ray->dir, hits[0].normal), &skip, &next, &start);
     RayHit again[kWays];
     bool foundAgain[kWays];
@@ -91,7 +94,7 @@ static int PassOverDifferences(const Scene &scene, vec3 centre, real spread, int
             continue;
         for (vec3 dir : {Reflect(ray.dir, hit.normal), ray.dir}) {
             Ray next;
-            RayStart start;
+            SelfHit start;
             LeaveSurface(&hit, dir, &kRobustMethods, &next, &start);
             if (start.index < 0)
                 continue;
@@ -154,7 +157,8 @@ static void TestPassOverIsExact() {
         real scale = real(kDouble ? scales[k] : floatScales[k]);
         Scene ball = WallScene();
         AddOctasphere(&ball, {scale, -2 * scale, 3 * scale}, scale, 4); // 2,048 triangles
-        CommitScene(&ball, LAYOUT_AUTO);
+        SceneLayout layout;
+        CommitScene(&ball, LAYOUT_AUTO, 2, &layout);
         int passed = 0;
         int differ = PassOverDifferences(ball, {scale, -2 * scale, 3 * scale}, 3 * scale, 800,
                                          20 + k, &passed);
@@ -323,18 +327,31 @@ static void TestSameImages() {
     }
 }
 
-// A scene edited after its commit is not answered from the stale layout.
+// A scene edited after its commit, or a copy of it edited, is not answered from the layout,
+// which no longer holds what the scene does.
 static void TestEditedSceneIsNotStale() {
     Scene scene = WallScene();
     AddOctasphere(&scene, {0, 0, -5}, 1, 2);
-    CommitScene(&scene, LAYOUT_BVH);
+    SceneLayout layout;
+    CommitScene(&scene, LAYOUT_BVH, 2, &layout);
+    Scene copy = scene;
     scene.triangles.push_back({{-9, -9, -2}, {9, -9, -2}, {0, 9, -2}, 0});
     Ray ray = {{0, 0, 0}, {0, 0, -1}};
     RayHit hit;
     CHECK(FindNearestHit(&scene, kRobustMethods, &ray, 0, kInfinity, &hit) && hit.t == 2,
           "a triangle added after the commit, 2 in front of the eye, is hit at t = 2");
-    Scene copy = scene;
-    CHECK(!copy.layout.committed, "a copy of a committed scene starts uncommitted");
+    copy.spheres.push_back({{0, 0, -3}, real(0.5), 0});
+    CHECK(FindNearestHit(&copy, kRobustMethods, &ray, 0, kInfinity, &hit) && hit.t == real(2.5),
+          "a sphere added to a copy of the committed scene, 2.5 in front of the eye, is hit");
+    copy.spheres.pop_back();
+    copy.triangles[0].a.z = 100;         // a copy edited in place: as many shapes, another triangle
+    Ray wall = {{0, 0, 95}, {0, 0, -1}}; // meets the edited triangle's corner, z = 100
+    RayHit a, b;
+    bool foundA = SearchLayout(&layout.accelerator, &copy, kRobustMethods, &wall, &kNoSelfHit,
+                               kInfinity, false, &a);
+    bool foundB = SearchList(&copy, kRobustMethods, &wall, &kNoSelfHit, kInfinity, false, &b);
+    CHECK(foundA == foundB && (!foundA || SameHit(a, b)),
+          "a copy of the committed scene, edited in place: the plain loop's answer");
 }
 
 // Triangles of every shape at once: corners drawn from a small shared pool (so slivers, nearly
@@ -438,9 +455,10 @@ static void TestSameTreeAnyThreads() {
         std::swap(one.triangles[i], one.triangles[(state >> 33) % (i + 1)]);
     }
     Scene two = one;
-    CommitScene(&one, LAYOUT_BVH, 1);
-    CommitScene(&two, LAYOUT_BVH, 2);
-    CHECK(!one.layout.nodes.empty() && SameTree(one.layout, two.layout),
+    SceneLayout oneLayout, twoLayout;
+    CommitScene(&one, LAYOUT_BVH, 1, &oneLayout);
+    CommitScene(&two, LAYOUT_BVH, 2, &twoLayout);
+    CHECK(!oneLayout.nodes.empty() && SameTree(oneLayout, twoLayout),
           "16,384 shuffled triangles: the same nodes and blocks built by one thread and by two");
 }
 

@@ -5,7 +5,7 @@
 // t from the plane (plane.cpp). Every check below runs in double and in float, each over the
 // lengths that precision holds (docs/robustness.md has the measured table), axis-aligned and
 // rotated (corners rounded after an exact rotation, so the walls are no longer on the grid).
-#include "robust.h"
+#include "../robust/robust.h"
 #include "robust_scenes.h"
 #include "test.h"
 

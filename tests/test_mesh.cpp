@@ -3,7 +3,7 @@
 // Each face's triangles in fan order, each index form, each error at its line, each transform
 // word moving a vertex to the place worked out by hand, and each path found beside its scene
 // file. (Rays at meshes and the program's refusals: test_mesh_rays.cpp.)
-#include "../io.h"
+#include "../app/app.h"
 #include "test.h"
 
 #include <cstdio>

@@ -3,7 +3,7 @@
 // Rays fired at a turned quad hit where the pencil says; the committed icosphere is closed,
 // wound outward, and never lets a ray out through a corner or an edge; and the program refuses
 // to write its image over a mesh it read, as it refuses to write over the scene file.
-#include "../io.h"
+#include "../app/app.h"
 #include "test.h"
 
 #include <cstdio>

@@ -5,6 +5,7 @@
 // Schlick's Fresnel. At scale 1 it must draw essentially rt's image; where it fails, the failure
 // must be the method's own (which hard cases it gets wrong, acne far from the origin, lost
 // contact shadows at small scale, glass under the skip rule), and these tests hold each to it.
+#include "../app/app.h"
 #include "../render.h"
 #include "hard_cases.h"
 #include "robust_scenes.h"
@@ -128,7 +129,7 @@ static void TestEpsilonLosesSmallShadows() {
         // from the side, low, onto the floor at x = 0.9 r, under the ball's flank
         vec3 target = {real(0.9) * r, 0, 0}, from = {1, real(0.1) * r, 0};
         Ray ray = {from, target - from};
-        color c = TraceRay(&s, &settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
+        color c = TraceRay(&s, &settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
         shadowed[k] = std::fabs(c.x - s.ambient) < real(1e-3);
     }
     CHECK(shadowed[0] && !shadowed[1],
@@ -151,7 +152,7 @@ static void TestSkipCannotSeeGlassFromInside() {
         std::vector<RayNode> tree;
         TraceLog log = {RayStats{}, &tree, -1, 0};
         Ray ray = {{0, real(0.3), 0}, {0, 0, -1}};
-        TraceRay(&s, &settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
+        TraceRay(&s, &settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
         bool leavesFromInside = false;
         for (const RayNode &n : tree)
             leavesFromInside =
@@ -187,7 +188,7 @@ static void TestSkipPassesOverOneShape() {
         from.point = kind == SHAPE_SPHERE ? vec3{0, 0, 1} : vec3{0, 0, 0};
         from.normal = {0, 0, 1}, from.pointError = {0, 0, 0};
         Ray ray;
-        RayStart start;
+        SelfHit start;
         LeaveSurface(&from, {0, 0, -1}, &skip, &ray, &start);
         RayHit hit;
         bool found = FindNearestHitFrom(&one, skip, &ray, &start, kInfinity, &hit);

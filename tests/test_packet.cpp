@@ -1,13 +1,14 @@
 // tests/test_packet.cpp -- a packet of rays from the eye answers what each ray alone answers.
 //
-// A pixel's samples are searched for together (FindNearestHitsFromEye): up to kLanes rays in the
-// lanes of the kernel, one shape at a time (kernel_packet.h). Each ray must get the very bits the
-// plain loop gives it alone: the same t, point, normal, error bound and shape, ties included. The
-// checks ask each packet three ways (the packet kernel itself, FindNearestHitsFromEye, and each
-// ray alone in the scene as written) and count the packets the kernel took, so that a packet path
-// that quietly fell back to one ray at a time would show.
-#include "../render.h"
-#include "../robust.h"
+// A pixel's samples are searched for together (FindEyeRayHits, where the accelerator takes them
+// as packets, fast/search.cpp): up to kLanes rays in the lanes of the kernel, one shape at a time
+// (fast/kernel_packet.h). Each ray must get the very bits the plain loop gives it alone: the same
+// t, point, normal, error bound and shape, ties included. The checks ask each packet three ways
+// (the packet kernel itself, FindEyeRayHits, and each ray alone in the scene as written) and
+// count the packets the kernel took, so that a packet path that quietly fell back to one ray at a
+// time would show; and they ask the shadow rays of the packet's hits of the committed scene, one
+// by one, against the scene as written.
+#include "../fast/fast.h"
 #include "robust_scenes.h"
 #include "test.h"
 
@@ -23,12 +24,12 @@ struct PacketCount {
 
 // The shadow rays of a packet's hits toward a point (ShadowRay: from the hit's own side, passing
 // over the triangle it leaves where it goes plainly away), and from the same points with a
-// tMin of 1/4 and leaving the shape hit (the second handout's skip): AnyHitsFrom against each
-// ray alone.
+// tMin of 1/4 and leaving the shape hit (the second handout's skip): AnyHitFrom in the committed
+// scene against the scene as written.
 static void AskShadows(const Scene *committed, const Scene *plain, const RayHit *hits,
                        const bool *found, int count, PacketCount *c) {
     Ray rays[kLanes], skipping[kLanes];
-    RayStart starts[kLanes], skips[kLanes];
+    SelfHit starts[kLanes], skips[kLanes];
     int n = 0;
     for (int r = 0; r < count; r++) {
         vec3 light = hits[r].point + SafeLength(hits[r].point) * vec3{1, 2, 3} + vec3{1, 2, 3};
@@ -39,8 +40,10 @@ static void AskShadows(const Scene *committed, const Scene *plain, const RayHit 
         }
     }
     bool blocked[kLanes], skipBlocked[kLanes];
-    AnyHitsFrom(committed, kRobustMethods, rays, starts, n, 1, blocked);
-    AnyHitsFrom(committed, kRobustMethods, skipping, skips, n, 1, skipBlocked);
+    for (int k = 0; k < n; k++) {
+        blocked[k] = AnyHitFrom(committed, kRobustMethods, &rays[k], &starts[k], 1);
+        skipBlocked[k] = AnyHitFrom(committed, kRobustMethods, &skipping[k], &skips[k], 1);
+    }
     for (int k = 0; k < n; k++) {
         c->differ += blocked[k] != AnyHitFrom(plain, kRobustMethods, &rays[k], &starts[k], 1);
         c->differ +=
@@ -51,25 +54,29 @@ static void AskShadows(const Scene *committed, const Scene *plain, const RayHit 
 
 // One packet, asked three ways against the committed scene and the scene as written, and its
 // hits' shadow rays two ways.
-static void AskPacket(const Scene *committed, const Scene *plain, const Ray *rays, int count,
-                      PacketCount *c) {
-    RayStart starts[kLanes];
-    RayHit kernel[kLanes], hits[kLanes];
-    bool kernelFound[kLanes], found[kLanes];
+static void AskPacket(const Scene *committed, const SceneLayout *layout, const Scene *plain,
+                      const Ray *rays, int count, PacketCount *c) {
+    RayHit kernel[kLanes], hits[kLanes], accelerated[kLanes];
+    bool kernelFound[kLanes], found[kLanes], acceleratedFound[kLanes];
+    bool answered[kEyeRaysTogether] = {};
     bool oneAxis = true; // HitCommittedPacket's condition: every ray sheared about one axis
-    for (int r = 0; r < count; r++) {
-        starts[r] = kFromTheEye;
+    for (int r = 0; r < count; r++)
         oneAxis = oneAxis && DominantAxis(rays[r].dir) == DominantAxis(rays[0].dir);
-    }
-    RayPacket packet = {rays, starts, count, DominantAxis(rays[0].dir), kInfinity, false};
-    bool taken = oneAxis && HitCommittedPacket(committed, &packet, kernel, kernelFound);
-    bool packed = FindNearestHitsFromEye(committed, kRobustMethods, rays, count, hits, found);
-    c->differ += packed && !taken; // a packet only where the kernel can take one
+    RayPacket packet = {rays, count, DominantAxis(rays[0].dir)};
+    bool taken = oneAxis && HitCommittedPacket(committed, layout, &packet, kernel, kernelFound);
+    SearchEyeRays(&layout->accelerator, committed, kRobustMethods, rays, count, accelerated,
+                  acceleratedFound, answered);
+    FindEyeRayHits(committed, kRobustMethods, rays, count, hits, found);
+    c->differ += answered[0] && !taken; // a packet only where the kernel can take one
+    for (int r = 0; r < count; r++)
+        c->differ += answered[r] != answered[0] ||
+                     (answered[r] && (acceleratedFound[r] != found[r] ||
+                                      (found[r] && !SameHit(accelerated[r], hits[r]))));
     c->taken += taken, c->packets++;
     for (int r = 0; r < count; r++) {
         RayHit alone;
         bool one =
-            FindNearestHitFrom(plain, kRobustMethods, &rays[r], &kFromTheEye, kInfinity, &alone);
+            FindNearestHitFrom(plain, kRobustMethods, &rays[r], &kNoSelfHit, kInfinity, &alone);
         bool same = found[r] == one && (!one || SameHit(hits[r], alone));
         if (taken)
             same = same && kernelFound[r] == one && (!one || SameHit(kernel[r], alone));
@@ -90,8 +97,10 @@ struct PacketRays {
 };
 static PacketCount CountPacketDifferences(const Scene &scene, const PacketRays *p, int packets,
                                           int count, uint64_t seed) {
-    Scene committed = scene, plain = scene; // (copies start uncommitted)
-    CommitScene(&committed, LAYOUT_LIST);
+    Scene committed = scene, plain = scene;
+    plain.accelerator = nullptr; // the plain loop
+    SceneLayout layout;
+    CommitScene(&committed, LAYOUT_LIST, 2, &layout);
     TestRng rng = {seed};
     PacketCount c = {0, 0, 0, 0, 0};
     real reach = SafeLength(p->centre - p->eye);
@@ -109,7 +118,7 @@ static PacketCount CountPacketDifferences(const Scene &scene, const PacketRays *
                                   vec3{Uniform(&rng) - real(0.5), Uniform(&rng) - real(0.5), 0};
             rays[r] = {o, SafeNormalize(target - o)}; // unit: ScaleRay leaves it as it is
         }
-        AskPacket(&committed, &plain, rays, count, &c);
+        AskPacket(&committed, &layout, &plain, rays, count, &c);
     }
     return c;
 }
@@ -120,7 +129,7 @@ static void Report(const PacketCount &c, const char *what, bool mustTake) {
              "%s: of %d packets (%d taken by the kernel) and %d shadow rays asked twice (%d "
              "blocked), %d rays differ",
              what, c.packets, c.taken, c.shadows, c.blocked, c.differ);
-    bool took = !mustTake || !KernelCanBeWide() || c.taken > c.packets / 2;
+    bool took = !mustTake || !KernelHasVectors() || c.taken > c.packets / 2;
     CHECK(c.differ == 0 && took, line);
 }
 
@@ -213,12 +222,14 @@ static void TestMixedAxesFallBack() {
     Scene scene = WallScene();
     AddOctasphere(&scene, {0, 0, 0}, 1, 2);
     Scene committed = scene;
-    CommitScene(&committed, LAYOUT_LIST);
+    SceneLayout layout;
+    CommitScene(&committed, LAYOUT_LIST, 2, &layout);
     Ray rays[2] = {{{0, 0, 5}, {0, 0, -1}}, {{5, 0, 0}, {-1, 0, 0}}};
     RayHit hits[2];
-    bool found[2];
-    CHECK(!FindNearestHitsFromEye(&committed, kRobustMethods, rays, 2, hits, found),
-          "a ray along z and a ray along x: not one packet");
+    bool found[2], answered[kEyeRaysTogether] = {};
+    SearchEyeRays(&layout.accelerator, &committed, kRobustMethods, rays, 2, hits, found, answered);
+    CHECK(!answered[0] && !answered[1], "a ray along z and a ray along x: not one packet");
+    FindEyeRayHits(&committed, kRobustMethods, rays, 2, hits, found);
     RayHit alone[2];
     bool same = true;
     for (int r = 0; r < 2; r++)
@@ -231,8 +242,7 @@ static void TestMixedAxesFallBack() {
 
 // Whole renders: scenes traced with packets (committed) and one ray at a time (as written) give
 // the same bytes and the same ray counts. The test scene (mirrors, glass, two lights), the
-// assignment scene with ten lights in Phong shading, more than the packets keep answers for, and
-// the test scene path traced.
+// assignment scene with ten lights in Phong shading, and the test scene path traced.
 static void SameRenderScenes(Scene scenes[3]) {
     BuildTestScene(&scenes[0]);
     BuildDefaultScene(&scenes[1]);
@@ -263,7 +273,7 @@ static int PixelsThatDiffer(const Scene *scene, RenderSettings settings, int sam
                 GetCameraRay(&settings.camera, size, size, SamplePosition(i, j, k, samples), &ray);
                 sum = sum + (scene->shading == SHADING_PATH
                                  ? TracePath(scene, &settings, &ray, i, j, k, &log)
-                                 : TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye,
+                                 : TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kNoSelfHit,
                                             RayChain{1, 1}, &log));
             }
             sum = (real(1) / samples) * sum;
@@ -280,7 +290,8 @@ static void TestPixelsAsOneByOne() {
     Scene scenes[3];
     SameRenderScenes(scenes);
     for (Scene &scene : scenes) {
-        CommitScene(&scene, LAYOUT_LIST);
+        SceneLayout layout;
+        CommitScene(&scene, LAYOUT_LIST, 2, &layout);
         for (int samples : {3, 9, 10, 17}) {
             int differ = PixelsThatDiffer(&scene, TestSettings(&scene), samples);
             CHECK(differ == 0, "of 64 pixels of " + std::to_string(samples) +
@@ -296,7 +307,8 @@ static void TestSameRenders() {
     for (Scene &scene : scenes) {
         scene.width = scene.height = 40;
         Scene committed = scene;
-        CommitScene(&committed, LAYOUT_LIST);
+        SceneLayout layout;
+        CommitScene(&committed, LAYOUT_LIST, 2, &layout);
         for (SampleMethod sampling : {SAMPLES_GRID, SAMPLES_JITTER}) {
             RenderSettings settings = TestSettings(&scene);
             settings.samplesPerPixel = 9; // two packets and a part in either build

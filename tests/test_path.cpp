@@ -1,9 +1,11 @@
 // tests/test_path.cpp -- `shading path`: predictions worked out by hand, and Monte Carlo error.
 //
-// Three scenes have exact answers: a diffuse sphere in a white furnace (every path returns rho),
-// a diffuse wall under one point light (rho / pi I cos / r^2, nothing else), and the inside of
-// a closed emitting sphere (Le / (1 - rho) in expectation, exactly a geometric sum under a fixed
-// bounce cap). The rest are statistical: the tests derive their tolerance from the sample count.
+// Both estimators: rt's (next-event estimation, MIS, roulette) and the journal's, as Ray Tracing
+// in One Weekend writes it. Three scenes have exact answers: a diffuse sphere in a white furnace
+// (every path returns rho), a diffuse wall under one point light (rho / pi I cos / r^2, nothing
+// else), and the inside of a closed emitting sphere (Le / (1 - rho) in expectation, exactly a
+// geometric sum under a fixed bounce cap). The rest are statistical: the tests derive their
+// tolerance from the sample count.
 #include "../render.h"
 #include "test.h"
 
@@ -47,7 +49,8 @@ static void TestWhiteFurnace() {
     scene.materials.push_back(Matte("grey", rho));
     scene.spheres.push_back({{0, 0, -4}, real(1.5), 0});
     for (int roulette = 0; roulette < 2; roulette++) {
-        RenderSettings s = PathSettings(&scene, 1, {SCATTER_COSINE, LIGHTS_MIS, roulette == 1, 0});
+        RenderSettings s =
+            PathSettings(&scene, 1, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, roulette == 1, 0});
         RayStats stats = {};
         bool exact = true;
         for (int j = 2; j <= 6; j++)
@@ -58,7 +61,7 @@ static void TestWhiteFurnace() {
         CHECK(exact, "white furnace: every path on the sphere brings back exactly rho");
         CHECK(stats.diffuse == stats.primary,
               "and every path scatters once and escapes: one diffuse ray a primary ray");
-        s = PathSettings(&scene, 8, {SCATTER_COSINE, LIGHTS_MIS, roulette == 1, 0});
+        s = PathSettings(&scene, 8, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, roulette == 1, 0});
         s.sampling = SAMPLES_JITTER;
         color c = Pixel(&scene, &s, 4, 4, &stats);
         CHECK_NEAR(c.z, rho.z, 8 * kRelTol, "8 jittered samples average to rho (but rounding)");
@@ -115,7 +118,8 @@ static void TestInsideGlowingSphere() {
     Scene scene = InsideGlowingSphere(real(0.5), 1);
     for (int k : {1, 3, 8}) {
         scene.depth = k;
-        RenderSettings s = PathSettings(&scene, 2, {SCATTER_COSINE, LIGHTS_NONE, true, 0});
+        RenderSettings s =
+            PathSettings(&scene, 2, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, true, 0});
         RayStats stats = {};
         color c = Pixel(&scene, &s, 3, 4, &stats);
         double expected = (1 - std::pow(0.5, k)) / 0.5;
@@ -125,7 +129,8 @@ static void TestInsideGlowingSphere() {
         // rho/pi Le cos cos' / r^2 over the density 1 / (4 pi R^2), and on a sphere cos = cos' =
         // r / 2R, so exactly rho Le, weighted rho^(k-1): one term more
         for (LightMethod lights : {LIGHTS_NEE, LIGHTS_MIS}) {
-            RenderSettings n = PathSettings(&scene, 2, {SCATTER_COSINE, lights, true, 0});
+            RenderSettings n =
+                PathSettings(&scene, 2, {ESTIMATOR_FULL, SCATTER_COSINE, lights, true, 0});
             color d = Pixel(&scene, &n, 3, 4, &stats);
             CHECK_NEAR(d.x, (1 - std::pow(0.5, k + 1)) / 0.5, 8 * kRelTol,
                        "cap of " + std::to_string(k) +
@@ -135,7 +140,8 @@ static void TestInsideGlowingSphere() {
     // Unbiased methods, no cap to speak of: the mean of 64 pixels within 4 standard errors
     for (LightMethod lights : {LIGHTS_MIS, LIGHTS_NEE, LIGHTS_NONE}) {
         scene.depth = 1000;
-        RenderSettings s = PathSettings(&scene, 16, {SCATTER_COSINE, lights, false, 0});
+        RenderSettings s =
+            PathSettings(&scene, 16, {ESTIMATOR_FULL, SCATTER_COSINE, lights, false, 0});
         double sum = 0, sum2 = 0;
         RayStats stats = {};
         for (int j = 0; j < 8; j++)
@@ -169,7 +175,8 @@ static void TestEmittersAtEveryScale() {
         std::string at = text;
         Scene sphere = InsideGlowingSphere(real(0.5), 1);
         sphere.spheres[0].radius = 10 * scale, sphere.depth = 1;
-        RenderSettings s = PathSettings(&sphere, 2, {SCATTER_COSINE, LIGHTS_NEE, true, 0});
+        RenderSettings s =
+            PathSettings(&sphere, 2, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NEE, true, 0});
         RayStats stats = {};
         CHECK_NEAR(Pixel(&sphere, &s, 3, 4, &stats).x, 1.5, 8 * kRelTol,
                    "inside a glowing sphere, one ray and its lamp sample: Le (1 + rho)" + at);
@@ -182,7 +189,8 @@ static void TestEmittersAtEveryScale() {
         for (auto &t : f)
             octahedron.triangles.push_back({p[t[0]], p[t[1]], p[t[2]], 0});
         for (LightMethod lights : {LIGHTS_NEE, LIGHTS_MIS}) {
-            RenderSettings o = PathSettings(&octahedron, 16, {SCATTER_COSINE, lights, true, 0});
+            RenderSettings o =
+                PathSettings(&octahedron, 16, {ESTIMATOR_FULL, SCATTER_COSINE, lights, true, 0});
             double sum = 0, sum2 = 0;
             for (int j = 0; j < 8; j++)
                 for (int i = 0; i < 8; i++) {
@@ -283,11 +291,12 @@ static void CheckAgree(const std::vector<double> &base, const std::vector<double
 // within 4 standard errors of their mean.
 static void TestMethodsAgree() {
     Scene scene = SmallBox(10);
-    std::vector<double> base = Light(&scene, 256, {SCATTER_COSINE, LIGHTS_MIS, false, 1});
-    const PathMethods others[] = {{SCATTER_UNIFORM, LIGHTS_MIS, false, 2},
-                                  {SCATTER_COSINE, LIGHTS_NEE, false, 3},
-                                  {SCATTER_COSINE, LIGHTS_NONE, false, 4},
-                                  {SCATTER_UNIFORM, LIGHTS_NONE, true, 5}};
+    std::vector<double> base =
+        Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 1});
+    const PathMethods others[] = {{ESTIMATOR_FULL, SCATTER_UNIFORM, LIGHTS_MIS, false, 2},
+                                  {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NEE, false, 3},
+                                  {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 4},
+                                  {ESTIMATOR_FULL, SCATTER_UNIFORM, LIGHTS_NONE, true, 5}};
     const char *names[] = {"uniform sampling", "NEE without MIS", "no NEE",
                            "uniform, no NEE, no roulette", "adaptive sampling (no NEE)"};
     for (int k = 0; k < 5; k++) {
@@ -295,9 +304,10 @@ static void TestMethodsAgree() {
             scene.lights.clear(); // count chosen from the averaged samples would darken it
         std::vector<double> other =
             k < 4 ? Light(&scene, 256, others[k])
-                  : Light(&scene, 256, {SCATTER_COSINE, LIGHTS_NONE, false, 6}, SAMPLES_ADAPTIVE);
+                  : Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 6},
+                          SAMPLES_ADAPTIVE);
         if (k == 4)
-            base = Light(&scene, 256, {SCATTER_COSINE, LIGHTS_NONE, false, 1});
+            base = Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 1});
         CheckAgree(base, other, names[k]);
     }
 }
@@ -308,10 +318,11 @@ static void TestSphereLampAgrees() {
     Scene scene = SmallBox(10);
     scene.lights.clear();
     scene.spheres[0].material = 3; // the lamp's material: the sphere glows
-    std::vector<double> hits = Light(&scene, 256, {SCATTER_COSINE, LIGHTS_NONE, false, 1});
-    CheckAgree(hits, Light(&scene, 256, {SCATTER_COSINE, LIGHTS_NEE, false, 2}),
+    std::vector<double> hits =
+        Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 1});
+    CheckAgree(hits, Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NEE, false, 2}),
                "a glowing sphere found by next-event estimation alone");
-    CheckAgree(hits, Light(&scene, 256, {SCATTER_UNIFORM, LIGHTS_MIS, false, 3}),
+    CheckAgree(hits, Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_UNIFORM, LIGHTS_MIS, false, 3}),
                "a glowing sphere under MIS, uniform sampling");
 }
 
@@ -332,7 +343,8 @@ static void TestThreadsAndCounts() {
     // emitter, and scatters once; the scattered ray's vertex adds its shadow rays and ends
     scene.depth = 2;
     RayStats c = {};
-    RenderSettings capped = PathSettings(&scene, 1, {SCATTER_COSINE, LIGHTS_MIS, true, 0});
+    RenderSettings capped =
+        PathSettings(&scene, 1, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, true, 0});
     Render(&scene, &capped, &one, &c);
     uint64_t diffuseHits = 0; // pixels whose centre sees a diffuse wall, not the lamp
     for (int j = 0; j < 16; j++)
@@ -377,6 +389,46 @@ static void TestEmitterWithoutArea() {
           "a lamp without area is left out of the emitters (2 remain), and no pixel is NaN");
 }
 
+// The journal's estimator (--estimator journal): colour = emitted + reflectance x what the
+// scattered ray brings back. Exact where every path is the same sum: in the white furnace every
+// sample is rho (the scattered ray escapes to a background of 1), inside a closed glowing
+// sphere Le (1 + rho + ... + rho^(k-1)) under a cap of k rays. A point light, which no ray can
+// hit, lights nothing. And where a scene has no point light, it estimates the same light as
+// rt's estimator, within 4 standard errors.
+static void TestJournalEstimator() {
+    PathMethods journal = {ESTIMATOR_JOURNAL, SCATTER_COSINE, LIGHTS_MIS, false, 0};
+    Scene furnace = PathScene(9);
+    furnace.background = {1, 1, 1};
+    furnace.materials.push_back(Matte("grey", {real(0.3), real(0.5), real(0.8)}));
+    furnace.spheres.push_back({{0, 0, -4}, real(1.5), 0});
+    RenderSettings s = PathSettings(&furnace, 1, journal);
+    RayStats stats = {};
+    color c = Pixel(&furnace, &s, 4, 4, &stats);
+    CHECK(c.x == real(0.3) && c.y == real(0.5) && c.z == real(0.8) && stats.diffuse == 1,
+          "the journal's estimator in the white furnace: rho exactly, one diffuse ray");
+    Scene inside = InsideGlowingSphere(real(0.5), 1);
+    for (int k : {1, 3, 8}) {
+        inside.depth = k;
+        s = PathSettings(&inside, 2, journal);
+        CHECK_NEAR(Pixel(&inside, &s, 3, 4, &stats).x, (1 - std::pow(0.5, k)) / 0.5, 8 * kRelTol,
+                   "the journal's estimator inside a glowing sphere, cap of " + std::to_string(k) +
+                       " rays: Le (1 + rho + ... + rho^(k-1))");
+    }
+    Scene wall = PathScene(33);
+    wall.materials.push_back(Matte("wall", {real(0.5), real(0.5), real(0.5)}));
+    wall.triangles.push_back({{-50, -50, -4}, {50, -50, -4}, {0, 50, -4}, 0});
+    wall.lights.push_back({{0, 0, -2}, {4, 4, 4}});
+    s = PathSettings(&wall, 1, journal);
+    c = Pixel(&wall, &s, 16, 16, &stats);
+    CHECK(c.x == 0 && c.y == 0 && c.z == 0,
+          "the journal's estimator: a wall under a point light only is black (no ray hits it)");
+    Scene box = SmallBox(10);
+    box.lights.clear();
+    CheckAgree(Light(&box, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 1}),
+               Light(&box, 256, {ESTIMATOR_JOURNAL, SCATTER_COSINE, LIGHTS_MIS, false, 2}),
+               "the journal's estimator against rt's, a box lit by a lamp");
+}
+
 // The program: the path options, --stats and --pixel.
 static void TestPathProgram() {
     std::string dir = MakeTestDir("path");
@@ -403,6 +455,15 @@ static void TestPathProgram() {
               tree.find("\"kind\":\"shadow\"") != std::string::npos,
           "--pixel shows the path: a diffuse ray and shadow rays in the tree");
     CHECK(RunRay(dir, "p.scene --lights some", &err) == 2, "--lights some: exit 2");
+    status = RunRay(dir, "p.scene --estimator journal --pixel 4 6", &err);
+    tree = ReadFile(std::string(dir) + "/out.txt");
+    CHECK(status == 0 && tree.find("\"kind\":\"diffuse\"") != std::string::npos &&
+              tree.find("\"kind\":\"shadow\"") == std::string::npos,
+          "--estimator journal --pixel: a diffuse ray in the tree, and no shadow ray");
+    CHECK(RunRay(dir, "p.scene --estimator journal --spp 2 --stats -o j.png", &err) == 0 &&
+              err.find(" shadow=0 ") != std::string::npos,
+          "--estimator journal: a render that casts no shadow ray");
+    CHECK(RunRay(dir, "p.scene --estimator book", &err) == 2, "--estimator book: exit 2");
     RemoveTestDir(dir);
 }
 
@@ -416,5 +477,6 @@ void TestPath() {
     TestSphereLampAgrees();
     TestThreadsAndCounts();
     TestEmitterWithoutArea();
+    TestJournalEstimator();
     TestPathProgram();
 }

@@ -1,6 +1,6 @@
 // tests/test_probe.cpp -- the probes (--ray, --rays, --pixel), the debug views and --compare,
 // each against hits and colours worked out by hand on the assignment scene.
-#include "../io.h"
+#include "../app/app.h"
 #include "test.h"
 
 #include <cstdlib>

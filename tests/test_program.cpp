@@ -3,7 +3,7 @@
 // Runs ./ray (or $RAY) in a fresh temporary directory: the default output name, the PNG's size
 // and format, identical bytes for any thread count, the --stats lines, and bad input: exit
 // status 2 (3 for I/O), one `ray: ` line, and no output file touched.
-#include "../io.h"
+#include "../app/app.h"
 #include "test.h"
 
 #include <unistd.h>
@@ -14,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
+#include <vector>
 
 std::string ReadFile(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
@@ -152,7 +153,8 @@ static const BadRun kBadRuns[] = {
     {"--size 8 --size 9", 2, "--size given twice"},
     {"--tolerance 2", 2, "--tolerance goes with --compare"},
     {"--aa jitter", 2, "--aa changes nothing with one sample a pixel"},
-    {"--methods handout --layout bvh", 2, "--layout goes with the watertight triangle test"},
+    {"--methods handout --layout bvh", 2, "--layout auto, list and bvh go with the robust"},
+    {"--sphere textbook --layout list", 2, "go with the robust sphere and triangle tests"},
 };
 
 static void TestBadInput(const std::string &dir) {
@@ -456,6 +458,36 @@ static void TestPrintableLine() {
               std::string("PrintableLine: ") + c[1] + ", got " + PrintableLine(c[0]));
 }
 
+// --layout plain: the plain loop over the shapes, no accelerator installed, draws the same bytes
+// as the default (blocks, the BVH, packets) for every bundled scene, one sample a pixel and four
+// jittered ones; path-traced scenes with the journal's estimator too.
+static void TestPlainLayoutSameBytes(const std::string &dir) {
+    const char *scenes[] = {"reference", "test", "first",   "handout2",
+                            "effects",   "mesh", "cornell", "assignment_path"};
+    std::string err;
+    int differ = 0, runs = 0;
+    for (const char *name : scenes) {
+        char *path = realpath((std::string("scenes/") + name + ".scene").c_str(), nullptr);
+        std::string scene = path ? std::string("'") + path + "'" : name;
+        free(path);
+        bool traced = std::string(name) == "cornell" || std::string(name) == "assignment_path";
+        std::string size = std::string(name) == "handout2" ? " --size 32x24" : " --size 32";
+        std::vector<std::string> settings = {"", " --spp 4 --aa jitter"};
+        if (traced)
+            settings.push_back(" --spp 2 --estimator journal");
+        for (const std::string &more : settings) {
+            int a = RunRay(dir, scene + size + more + " -o fast.ppm", &err);
+            int b = RunRay(dir, scene + size + more + " --layout plain -o plain.ppm", &err);
+            std::string fast = ReadFile(dir + "/fast.ppm"), plain = ReadFile(dir + "/plain.ppm");
+            differ += a != 0 || b != 0 || fast.empty() || fast != plain;
+            runs++;
+        }
+    }
+    CHECK(differ == 0, "--layout plain and the default: the same bytes in " +
+                           std::to_string(runs - differ) + " of " + std::to_string(runs) +
+                           " renders of the bundled scenes");
+}
+
 void TestProgram() {
     TestPrintableLine();
     std::string dir = MakeTestDir("test");
@@ -466,6 +498,7 @@ void TestProgram() {
     TestScreenCameraSizes(dir);
     TestHiddenWarnings(dir);
     TestSceneFilesInProgram(dir);
+    TestPlainLayoutSameBytes(dir);
     TestProbesInProgram(dir);
     TestCompare(dir);
     TestOneLineErrors(dir);

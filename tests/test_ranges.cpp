@@ -5,7 +5,7 @@
 // scene scaled from 1e-300 to 1e300 (float: 1e-37 to 1e36) with each of the three cameras, and
 // glass of index 1 at grazing incidence. Each runs in double and in float, over that precision's
 // range.
-#include "../io.h"
+#include "../app/app.h"
 #include "robust_scenes.h"
 #include "test.h"
 
@@ -202,9 +202,9 @@ static void TestFarLight() {
     for (real x : {real(0), real(500)}) {
         TraceLog log = {RayStats{}, nullptr, -1, 0};
         Ray ray = {{x, 50, 30}, {0, -50, -30}};
-        color c = read ? TraceRay(&scene, &settings, RAY_PRIMARY, &ray, &kFromTheEye,
-                                  RayChain{1, 1}, &log)
-                       : color{-1, -1, -1};
+        color c =
+            read ? TraceRay(&scene, &settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log)
+                 : color{-1, -1, -1};
         (x == 0 ? shadow : lit) = c.x;
     }
     CHECK(read && std::fabs(shadow - real(0.2)) <= real(1e-6) && lit > real(0.99),

@@ -4,6 +4,7 @@
 // is 2/512 = 1/256 wide and pixel (i, j)'s centre ray is ((i + 0.5 - 256)/256,
 // (256 - j - 0.5)/256, -2). Every number below is exact in binary.
 #include "../render.h"
+#include "../robust/robust.h"
 #include "test.h"
 
 static void CheckRay(const Perspective &p, real sx, real sy, vec3 expected, const char *what) {

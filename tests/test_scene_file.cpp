@@ -1,7 +1,8 @@
 // tests/test_scene_file.cpp -- scene files: every error names its line, valid variations read
 // the same, the three cameras make the rays worked out by hand, and the built-in scenes' files
 // draw the built-in scenes' bytes.
-#include "../io.h"
+#include "../app/app.h"
+#include "../fast/fast.h"
 #include "../render.h"
 #include "test.h"
 
@@ -233,7 +234,8 @@ static void TestSceneVariations() {
             Scene huge;
             bool read = ParseSceneText("material m\ntriangle " + std::string(t) + " m\n", "t.scene",
                                        &huge, &error);
-            CommitScene(&huge, LAYOUT_AUTO);
+            SceneLayout layout;
+            CommitScene(&huge, LAYOUT_AUTO, 2, &layout);
             RayHit hit;
             Ray ray = {{0, 0, 0}, {0, 0, -1}};
             CHECK(read && huge.warnings.size() == 1 &&

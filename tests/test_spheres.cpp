@@ -1,12 +1,13 @@
 // tests/test_spheres.cpp -- the committed sphere blocks answer exactly what the plain loop answers.
 //
-// The kernel's sphere half (kernel_spheres.h) runs the first step of the stable sphere test on
+// The kernel's sphere half (fast/kernel_spheres.h) runs the first step of the stable sphere test on
 // kLanes spheres at once and sends the spheres that pass it to IntersectSphere in scene order.
 // It promises the plain loop's very bits: the same nearest sphere, t, point, normal and error
 // bound, ties to the earlier sphere, the same any-hit answer and the same skip. Each check asks
 // the same question of the scene as written and committed, and of the kernel's two copies
 // directly (AVX2 vectors, where this processor has them, and lane by lane), and compares every
 // field of the answers.
+#include "../fast/fast.h"
 #include "robust_scenes.h"
 #include "test.h"
 
@@ -22,15 +23,23 @@ static vec3 RandomUnit(TestRng *rng) {
     }
 }
 
-// The scene as written and committed, in one pair.
+// The scene as written and committed, in one pair, with the committed one's layout.
 struct SpherePair {
     Scene plain, committed;
+    SceneLayout layout;
 };
 
+// The pair made from `scene`: the plain loop's, and committed.
+static void MakePair(const Scene &scene, SpherePair *p) {
+    p->plain = scene, p->committed = scene;
+    p->plain.accelerator = nullptr;
+    CommitScene(&p->committed, LAYOUT_AUTO, 2, &p->layout);
+}
+
 // One question asked of the plain scene and the committed one (nearest and any hit), and, when
-// the direction needs no rescaling (HitShapes then passes the ray on as it is), of each copy of
+// the direction needs no rescaling (the search then passes the ray on as it is), of each copy of
 // the kernel directly. False at the first answer that differs.
-static bool SameSphereAnswers(SpherePair *p, const Ray *ray, const RayStart *start) {
+static bool SameSphereAnswers(SpherePair *p, const Ray *ray, const SelfHit *start) {
     RayHit a, b;
     bool foundA = FindNearestHitFrom(&p->plain, kRobustMethods, ray, start, kInfinity, &a);
     bool foundB = FindNearestHitFrom(&p->committed, kRobustMethods, ray, start, kInfinity, &b);
@@ -42,20 +51,21 @@ static bool SameSphereAnswers(SpherePair *p, const Ray *ray, const RayStart *sta
     if (!WithinWindow(MaxComponent(ray->dir), kDirectionWindow))
         return true;
     int skip = start->shape == SHAPE_SPHERE ? start->index : -1;
-    Scene *scene = &p->committed;
-    bool wideBefore = scene->layout.wide, same = true;
-    for (int wide = 0; wide <= (int)KernelCanBeWide(); wide++) {
-        scene->layout.wide = wide;
+    const Scene *scene = &p->committed;
+    bool vectorsBefore = p->layout.vectors, same = true;
+    for (int vectors = 0; vectors <= (int)KernelHasVectors(); vectors++) {
+        p->layout.vectors = vectors;
         for (int anyHit = 0; anyHit < 2; anyHit++) {
             RayHit c;
             real tMax = kInfinity;
-            bool found = HitCommittedSpheres(scene, skip, ray, start->tMin, &tMax, anyHit, &c);
+            bool found =
+                HitCommittedSpheres(scene, &p->layout, skip, ray, start->tMin, &tMax, anyHit, &c);
             bool plainAny = AnyHitFrom(&p->plain, kRobustMethods, ray, start, kInfinity);
             same = same && found == (anyHit ? plainAny : foundA) &&
                    (!found || anyHit || (SameHit(a, c) && SameBits(tMax, a.t)));
         }
     }
-    scene->layout.wide = wideBefore;
+    p->layout.vectors = vectorsBefore;
     return same;
 }
 
@@ -80,8 +90,7 @@ static Scene SpheresAt(int n, real scale, TestRng *rng) {
 // number of questions whose answers differ.
 static int SphereDifferences(const Scene &scene, real scale, int rays, TestRng *rng) {
     SpherePair p;
-    p.plain = scene, p.committed = scene; // (copies: uncommitted)
-    CommitScene(&p.committed, LAYOUT_AUTO);
+    MakePair(scene, &p);
     int differ = 0, n = (int)scene.spheres.size();
     for (int i = 0; i < rays; i++) {
         const Sphere &s = scene.spheres[i % n];
@@ -108,11 +117,11 @@ static int SphereDifferences(const Scene &scene, real scale, int rays, TestRng *
             ray.dir =
                 (i % 2 ? PowerOfTwo(2 * kDirectionWindow) : 1 / PowerOfTwo(2 * kDirectionWindow)) *
                 ray.dir;
-        RayStart start = kFromTheEye;
+        SelfHit start = kNoSelfHit;
         differ += !SameSphereAnswers(&p, &ray, &start);
         start.shape = SHAPE_SPHERE, start.index = i % n; // leaving that sphere
         differ += !SameSphereAnswers(&p, &ray, &start);
-        start = kFromTheEye, start.tMin = s.radius / 4; // a later start
+        start = kNoSelfHit, start.tMin = s.radius / 4; // a later start
         differ += !SameSphereAnswers(&p, &ray, &start);
     }
     return differ;
@@ -150,10 +159,9 @@ static void TestSphereTies() {
     Sphere s = {{0, 0, -5}, 1, 0}, big = {{0, 0, -9}, 3, 0};
     scene.spheres = {big, s, big, big, s, big, s};
     SpherePair p;
-    p.plain = scene, p.committed = scene;
-    CommitScene(&p.committed, LAYOUT_AUTO);
+    MakePair(scene, &p);
     Ray ray = {{0, 0, 0}, {0, 0, -1}};
-    RayStart start = kFromTheEye;
+    SelfHit start = kNoSelfHit;
     RayHit hit;
     CHECK(FindNearestHitFrom(&p.committed, kRobustMethods, &ray, &start, kInfinity, &hit) &&
               hit.index == 1 && hit.t == 4,
@@ -172,14 +180,15 @@ static void TestSphereTies() {
 static void TestEditedSpheresAreNotStale() {
     Scene scene = WallScene();
     scene.spheres.push_back({{0, 0, -9}, 1, 0});
-    CommitScene(&scene, LAYOUT_AUTO);
+    SceneLayout layout;
+    CommitScene(&scene, LAYOUT_AUTO, 2, &layout);
     scene.spheres.push_back({{0, 0, -5}, 1, 0});
     Ray ray = {{0, 0, 0}, {0, 0, -1}};
     RayHit hit;
     CHECK(FindNearestHit(&scene, kRobustMethods, &ray, 0, kInfinity, &hit) && hit.index == 1 &&
               hit.t == 4,
           "a sphere added after the commit, 4 in front of the eye, is hit at t = 4");
-    CommitScene(&scene, LAYOUT_AUTO);
+    CommitScene(&scene, LAYOUT_AUTO, 2, &layout);
     RayHit textbook;
     bool found = FindNearestHit(&scene, kHandoutMethods, &ray, 0, kInfinity, &textbook);
     CHECK(found && textbook.index == 1 && textbook.t == 4,

@@ -4,6 +4,7 @@
 // image it renders in place (99.8% of pixels within 2/255); random scenes with degenerate,
 // coincident, tiny and huge shapes must render finite colours everywhere; a sphere seen from
 // absurdly far away must never claim a hit without a normal.
+#include "../app/app.h"
 #include "../render.h"
 #include "robust_scenes.h"
 #include "test.h"

@@ -1,7 +1,7 @@
 // test_text.cpp -- reading text (text.cpp): numbers as strtod (strtof in float) reads them, whole
 // numbers with leading zeros, lines up to their limit and at every line ending, and the hint for
 // a slip of the keyboard.
-#include "../io.h"
+#include "../app/app.h"
 #include "test.h"
 
 #include <cmath>

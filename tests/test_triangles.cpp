@@ -2,7 +2,7 @@
 //
 // The triangle a = (0, 1, -2), b = (-1, 0, -2), c = (1, 0, -2) stands in the plane z = -2;
 // (b - a) x (c - a) = (-1, -1, 0) x (1, -1, 0) = (0, 0, 2): its outward side faces +z, the eye.
-#include "robust.h"
+#include "../robust/robust.h"
 #include "test.h"
 
 #include <cstring>

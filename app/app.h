@@ -1,8 +1,9 @@
-// io.h -- what goes in and comes out besides the render: image files (image.cpp, image_read.cpp),
-// lines, tokens and numbers (text.cpp), OBJ meshes (mesh.cpp), probes and ray trees (probe.cpp),
-// debug views (views.cpp).
+// app/app.h -- the program around the render, for main (ray.cpp): the command line
+// (options.cpp), the program's modes and reports (modes.cpp), scene files (scene_file.cpp,
+// statements.cpp), image files (image.cpp, image_read.cpp), lines, tokens and numbers (text.cpp),
+// OBJ meshes (mesh.cpp), probes and ray trees (probe.cpp), debug views (views.cpp).
 #pragma once
-#include "render.h"
+#include "../render.h"
 
 #include <cstddef>
 #include <cstdio>
@@ -170,3 +171,118 @@ const char *ViewName(ViewKind view);
 // Renders a debug view of the primary hits instead of the lit image.
 void RenderView(const Scene *scene, const RenderSettings *settings, ViewKind view, Image *image,
                 RayStats *stats);
+
+// ---- scene_file.cpp: scene files (docs/scene-format.md) -----------------------------------------
+
+// Reads a scene file. On failure returns false with *error = "FILE:LINE: message".
+bool ReadSceneFile(const char *path, Scene *scene, std::string *error);
+
+// Reads a scene from text, naming it fileName in errors.
+bool ParseSceneText(const std::string &text, const char *fileName, Scene *scene,
+                    std::string *error);
+
+// What a render of the scene would hide without a word, for warnings: a point light inside a
+// sphere (its shadow rays end on it, so nothing outside is lit by that light), and the eye rays'
+// start (the eye, or under the slides' rays the screen's centre) inside a sphere that is not
+// glass (the image shows its inside). One line each, no prefix.
+std::vector<std::string> InsideWarnings(const Scene *scene, vec3 eyeRaysStart);
+
+// ---- options.cpp: the command line -------------------------------------------------------------
+
+// What the command line asks for; zero or empty means "not given".
+struct Options {
+    std::string scene = "default", output;
+    int width = 0, height = 0, spp = 1, depth = 0, threads = 0;
+    int sampling = 0;  // --aa: grid, jitter, adaptive, in SampleMethod's order
+    int methodSet = 0; // --methods: robust, handout
+    int layout = 0;    // --layout: auto, list, bvh, plain, in fast/'s LayoutChoice order
+    int estimator = 0, scatter = 0, lights = 0, roulette = 0; // --estimator, --scatter,
+                                                              // --lights, --roulette (shading
+                                                              // path): in Estimator's,
+                                                              // ScatterMethod's, LightMethod's
+                                                              // order; on, off
+    int seed = 0;                                             // --seed (shading path)
+    int sphere = -1, triangle = -1, selfHit = -1, cameraRay = -1, fresnel = -1; // -1: from the set
+    real epsilon = 0; // --self-hit epsilon=E
+    bool stats = false, help = false, version = false;
+    bool probeRay = false, pixel = false, view = false, compare = false;
+    real probe[6];
+    int pixelX = 0, pixelY = 0;
+    ViewKind viewKind = VIEW_NORMAL;
+    std::string raysFile, compareA, compareB;
+    double tolerance = 0;
+};
+
+// Options::layout for `--layout plain` (LAYOUT_PLAIN: main checks that they agree).
+const int kPlainLayout = 3;
+
+extern const char *kVersion, *kUsage;
+
+// Reads the command line into *opt; false with *error (one line) for anything not allowed:
+// unknown options, missing or bad values, an option given twice, modes that do not go together.
+bool ParseOptions(int argc, char **argv, Options *opt, std::string *error);
+
+// The methods the options choose: the set (--methods), then each single-method option given.
+Methods ChosenMethods(const Options *opt);
+
+// The render settings the scene and the options choose, planned for the scene (PlanRender), with
+// a progress line on standard error when it is a terminal.
+RenderSettings ChosenSettings(const Options *opt, const Scene *scene);
+
+// ---- modes.cpp: the program's modes, and what it reports ---------------------------------------
+
+// An error or warning, as one line `ray: MESSAGE` on standard error, whatever it quotes: a
+// control character (a newline in a file's name) is written as an escape (PrintableLine).
+void Complain(const std::string &message);
+
+// --compare: prints the difference, writes the heat map if -o was given. Returns the exit code.
+int CompareMode(const Options *opt);
+
+// --ray or --rays: one JSON line per ray. Returns the exit code.
+int ProbeMode(const Options *opt, const Scene *scene, const RenderSettings *settings);
+
+// --pixel X Y: the pixel's ray tree as JSON. Returns the exit code.
+int PixelTreeMode(const Options *opt, const Scene *scene, const RenderSettings *settings);
+
+// --size refused (false, *error), or the scene's own size warned of (true, *warning), when the
+// pixels of a screen camera would not be square; the message names a size that fits.
+bool CheckScreenCameraSize(const Options *opt, const Scene *scene, std::string *error,
+                           std::string *warning);
+
+// Why a lit render of this scene can only be one flat colour, for a warning: it has no shapes
+// (every pixel is the background), or nothing gives light (no light, a black background, and
+// ambient 0, or under `shading path` no material that emits): every pixel is black. Empty if
+// neither. (A warning, not an error: a test scene may mean it.)
+std::string OneColourWarning(const Scene *scene);
+
+// The file a render (or --view) writes: -o, or the scene's default name (a debug view's beside
+// the image: reference_normal.png), checked (CheckOutputPath) against the run's inputs: the
+// scene file, if `sceneIsFile`, and its meshes. False, said, and the exit status, if refused.
+bool ChooseOutput(const Options *opt, const Scene *scene, bool sceneIsFile,
+                  const std::string &defaultOutput, std::string *output, int *status);
+
+// The warnings of a render (not of a debug view): a scene that can only be one flat colour
+// (OneColourWarning), and what it would hide without a word (InsideWarnings).
+void WarnOfRender(const Options *opt, const Scene *scene, const RenderSettings *settings);
+
+// --stats: the image, the time, the rays by kind, the speed and the effects used (`threads`: the
+// threads the render ran on, which may be fewer than --threads asked for).
+void PrintStats(const RayStats *s, const RenderSettings *settings, int threads,
+                double renderSeconds, double totalSeconds);
+
+// Whether a `camera screen` can make a ray through every pixel: h and v non-zero and not parallel,
+// and the eye off the screen's plane (else every ray lies in that plane). False with *error.
+bool ScreenCameraIsValid(const Camera *camera, std::string *error);
+
+// A screen camera's edges fix its shape, so its image must keep it, or the pixels would not be
+// square: whether a W x H image does, for edges of lengths h and v (to within 1 part in 256).
+bool SquarePixels(double W, double H, double h, double v);
+
+// The size nearest `width` wide whose pixels are square for edges h and v (SquarePixels); false
+// if none up to 16384 x 16384 is.
+bool SquareSize(int width, double h, double v, int *W, int *H);
+
+// Whether a screen camera's edges are not at right angles, to the same 1 part in 256 (the cosine
+// of their angle): its pixels are then parallelograms, which a size can make equal-sided but not
+// square.
+bool ScreenIsSheared(const Camera *camera);

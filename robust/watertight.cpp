@@ -1,4 +1,5 @@
-// watertight.cpp -- the watertight ray/triangle test (Woop, Benthin & Wald, JCGT 2(1), 2013).
+// robust/watertight.cpp -- the watertight ray/triangle test (Woop, Benthin & Wald, JCGT 2(1),
+// 2013): rt's IntersectTriangle.
 //
 // The second handout's inside test, seen along the ray. The handout takes the hit point p and
 // asks whether the cross products (b - a) x (p - a), (c - b) x (p - b), (a - c) x (p - c) agree
@@ -9,7 +10,6 @@
 // is the same number with the opposite sign: no ray slips between them. Where the sign is not
 // certain (0, or NaN from overflow) it is recomputed exactly. Where the ray meets the triangle,
 // t, comes from plane.cpp. No epsilon anywhere.
-#include "ray.h"
 #include "robust.h"
 
 #include <algorithm>
@@ -153,39 +153,19 @@ bool IntersectWatertight(const Triangle *tri, const TriangleSetUp *setUp, const 
     return IntersectSheared<2>(tri, setUp, ray, shear, tMin, tMax, hit);
 }
 
-// The first step of IntersectSheared, small enough to sit inside the loop: true if the ray
-// passes outside an edge by the rounded edge functions alone. Most triangles a ray meets end
-// here, and only the rest pay for the whole test (which repeats these few operations).
-template <int kz> static inline bool PassesOutside(const Triangle *tri, const RayShear *k) {
-    ShearedTriangle s = ShearCorners<kz>(tri, k);
-    real u, v, w;
-    return EdgesDisagree(&s, &u, &v, &w);
-}
-
-// The loop of HitWatertightTriangles for one main axis: with kz a constant, every component is a
-// plain field, and the quick reject is inlined.
-template <int kz>
-static bool HitLoop(const Triangle *triangles, int n, int skip, const Ray *ray,
-                    const RayShear *shear, real tMin, real tMax, bool anyHit, RayHit *hit) {
-    bool found = false;
-    for (int i = 0; i < n; i++) {
-        if (PassesOutside<kz>(&triangles[i], shear) || i == skip ||
-            !IntersectSheared<kz>(&triangles[i], nullptr, ray, shear, tMin, tMax, hit))
-            continue; // (the skip before the test: a test that hits writes *hit)
-        hit->index = i;
-        tMax = hit->t;
-        found = true;
-        if (anyHit)
-            break;
-    }
-    return found;
-}
-
-bool HitWatertightTriangles(const Triangle *triangles, int n, int skip, const Ray *ray,
-                            const RayShear *shear, real tMin, real tMax, bool anyHit, RayHit *hit) {
-    if (shear->kz == 0)
-        return HitLoop<0>(triangles, n, skip, ray, shear, tMin, tMax, anyHit, hit);
-    if (shear->kz == 1)
-        return HitLoop<1>(triangles, n, skip, ray, shear, tMin, tMax, anyHit, hit);
-    return HitLoop<2>(triangles, n, skip, ray, shear, tMin, tMax, anyHit, hit);
+// The watertight test for any ray: its direction rescaled where it is too large or too small to
+// square (ScaleRay), the shear computed, the test, and t scaled back.
+bool IntersectTriangle(const Triangle *tri, const Ray *ray, real tMin, real tMax, RayHit *hit) {
+    ScaledRay s;
+    RayShear shear;
+    RayHit found;
+    if (!ScaleRay(ray, tMin, tMax, &s))
+        return false;
+    const Ray *searched = SearchedRay(&s, ray);
+    ShearRay(searched, &shear);
+    if (!IntersectWatertight(tri, nullptr, searched, &shear, s.tMin, s.tMax, &found) ||
+        !ScaleBack(&s, tMin, tMax, &found))
+        return false;
+    *hit = found;
+    return true;
 }

@@ -1,4 +1,5 @@
-// plane.cpp -- where a ray meets a triangle's plane: t, the hit point, and their error bounds.
+// robust/plane.cpp -- where a ray meets a triangle's plane: t, the hit point, and their error
+// bounds.
 //
 // The second handout finds a triangle hit in two steps: where the ray meets the triangle's
 // plane, then whether that point is inside. rt decides "inside" with the watertight test
@@ -16,7 +17,6 @@
 //      than kPlainRelativeError (a triangle much longer than the ray's way to it, seen from near
 //      its plane), the same formula again in double-double arithmetic, whose error is about u^2
 //      of the terms. This is what keeps boxes and floors of any length closed.
-#include "ray.h"
 #include "robust.h"
 
 #include <algorithm>
@@ -34,58 +34,59 @@ static dvec3 CrossTerms(dvec3 a, dvec3 b) {
 }
 
 // The rare tiers and set-ups are RT_COLD, out of line, so that the common path through
-// RobustPlaneHit is a small function whose values stay in registers.
-
-// kU, GammaD, kPlainRelativeError and kFirstOrderShare are in robust.h: the kernel's packets
-// (plane_lanes.h) compute tier 1 too.
+// RobustPlaneHit is a small function whose values stay in registers. kU, GammaD,
+// kPlainRelativeError, kFirstOrderShare and PlaneHitRecord are in robust.h: fast/'s packets
+// compute tier 1 too (fast/plane_lanes.h).
 
 // ---- double-double arithmetic (tier 2) ------------------------------------------------------
 
 // A number carried as the unevaluated sum hi + lo, |lo| <= u |hi|: about twice the digits of
 // double (Dekker, "A floating-point technique for extending the available precision", Numer.
 // Math. 18, 1971). Each operation below is within a few u^2 of the sizes of its operands.
-struct Wide {
+struct DoubleDouble {
     double hi, lo;
 };
 
 // a + b exactly (Knuth, TAOCP vol. 2, §4.2.2, TwoSum): the rounded sum and what rounding lost.
-static Wide TwoSum(double a, double b) {
+static DoubleDouble TwoSum(double a, double b) {
     double s = a + b, bb = s - a;
     return {s, (a - (s - bb)) + (b - bb)};
 }
 // a * b exactly: the fused multiply-add gives the product's rounding error exactly.
-static Wide TwoProduct(double a, double b) {
+static DoubleDouble TwoProduct(double a, double b) {
     double p = a * b;
     return {p, std::fma(a, b, -p)};
 }
 // hi + lo put back in the form |lo| <= u |hi| (Dekker's FastTwoSum).
-static Wide Renormalize(double hi, double lo) {
+static DoubleDouble Renormalize(double hi, double lo) {
     double s = hi + lo;
     return {s, lo - (s - hi)};
 }
-static Wide Add(Wide x, Wide y) {
-    Wide s = TwoSum(x.hi, y.hi);
+static DoubleDouble Add(DoubleDouble x, DoubleDouble y) {
+    DoubleDouble s = TwoSum(x.hi, y.hi);
     return Renormalize(s.hi, s.lo + (x.lo + y.lo));
 }
-static Wide Mul(Wide x, Wide y) {
-    Wide p = TwoProduct(x.hi, y.hi);
+static DoubleDouble Mul(DoubleDouble x, DoubleDouble y) {
+    DoubleDouble p = TwoProduct(x.hi, y.hi);
     return Renormalize(p.hi, p.lo + (x.hi * y.lo + x.lo * y.hi));
 }
-static Wide Neg(Wide x) { return {-x.hi, -x.lo}; }
+static DoubleDouble Neg(DoubleDouble x) { return {-x.hi, -x.lo}; }
 
-struct Wide3 {
-    Wide x, y, z;
+struct DoubleDouble3 {
+    DoubleDouble x, y, z;
 };
 // a - b exactly, per component, then times 2^k (exact unless the low part is subnormal)
-static Wide3 ExactDifference(dvec3 a, dvec3 b, int k) {
-    Wide x = TwoSum(a.x, -b.x), y = TwoSum(a.y, -b.y), z = TwoSum(a.z, -b.z);
-    auto scaled = [k](Wide w) { return Wide{std::ldexp(w.hi, k), std::ldexp(w.lo, k)}; };
+static DoubleDouble3 ExactDifference(dvec3 a, dvec3 b, int k) {
+    DoubleDouble x = TwoSum(a.x, -b.x), y = TwoSum(a.y, -b.y), z = TwoSum(a.z, -b.z);
+    auto scaled = [k](DoubleDouble w) {
+        return DoubleDouble{std::ldexp(w.hi, k), std::ldexp(w.lo, k)};
+    };
     return {scaled(x), scaled(y), scaled(z)};
 }
-static Wide WideDot(Wide3 a, Wide3 b) {
+static DoubleDouble DoubleDoubleDot(DoubleDouble3 a, DoubleDouble3 b) {
     return Add(Add(Mul(a.x, b.x), Mul(a.y, b.y)), Mul(a.z, b.z));
 }
-static Wide3 WideCross(Wide3 a, Wide3 b) {
+static DoubleDouble3 DoubleDoubleCross(DoubleDouble3 a, DoubleDouble3 b) {
     return {Add(Mul(a.y, b.z), Neg(Mul(a.z, b.y))), Add(Mul(a.z, b.x), Neg(Mul(a.x, b.z))),
             Add(Mul(a.x, b.y), Neg(Mul(a.y, b.x)))};
 }
@@ -128,13 +129,13 @@ static RT_INLINE double PlainError(const PlaneProblem *p, dvec3 toA, double t, d
 // of them, so 32 u^2 of the first-order terms' sizes bounds what they contribute; rounding the
 // two sums to double and dividing adds 3 u of t to first order, which gamma(4) covers with room
 // for the products of those three roundings.
-RT_COLD static PlaneT WidePlaneT(const PlaneProblem *p) {
+RT_COLD static PlaneT DoubleDoublePlaneT(const PlaneProblem *p) {
     int k = p->fixed->scale;
     dvec3 b = Widen(p->tri->b), c = Widen(p->tri->c);
-    Wide3 e1 = ExactDifference(b, p->a, k), e2 = ExactDifference(c, p->a, k);
-    Wide3 n = WideCross(e1, e2), toA = ExactDifference(p->a, p->origin, 0);
-    Wide3 d = {{p->dir.x, 0}, {p->dir.y, 0}, {p->dir.z, 0}};
-    Wide numerator = WideDot(n, toA), denominator = WideDot(n, d);
+    DoubleDouble3 e1 = ExactDifference(b, p->a, k), e2 = ExactDifference(c, p->a, k);
+    DoubleDouble3 n = DoubleDoubleCross(e1, e2), toA = ExactDifference(p->a, p->origin, 0);
+    DoubleDouble3 d = {{p->dir.x, 0}, {p->dir.y, 0}, {p->dir.z, 0}};
+    DoubleDouble numerator = DoubleDoubleDot(n, toA), denominator = DoubleDoubleDot(n, d);
     double t = numerator.hi / denominator.hi;
     dvec3 nHi = {n.x.hi, n.y.hi, n.z.hi}, toAHi = {toA.x.hi, toA.y.hi, toA.z.hi};
     dvec3 e1Hi = {e1.x.hi, e1.y.hi, e1.z.hi}, e2Hi = {e2.x.hi, e2.y.hi, e2.z.hi};
@@ -294,7 +295,7 @@ static bool FindPlaneT(const PlaneProblem *p, Window *w, real tMin, real tMax, P
         return false;
     if (!trusted || !(plane->t - plane->error > 0) ||
         plane->error > kPlainRelativeError * std::fabs(plane->t)) {
-        *plane = WidePlaneT(p);
+        *plane = DoubleDoublePlaneT(p);
         if (!IntoWindow(p, w, plane))
             return false;
     }
@@ -325,8 +326,7 @@ static RT_INLINE QuickAnswer QuickPlaneT(const PlaneProblem *p, const Ray *ray, 
 }
 
 // Everything QuickPlaneT leaves open: FindPlaneT, from the start. (It makes its own
-// PlaneProblem: taking the caller's by address would keep that one in memory on the common path,
-// measured at 7% more instructions in RobustPlaneHit.)
+// PlaneProblem: taking the caller's by address would keep that one in memory on the common path.)
 RT_COLD static bool SlowPlaneT(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray,
                                real tMin, real tMax, PlaneT *plane) {
     PlaneProblem p = {tri, setUp, Widen(tri->a), Widen(ray->origin), Widen(ray->dir)};

@@ -1,10 +1,9 @@
-// statements.cpp -- the statements of a scene file (docs/scene-format.md), one reader each: the
+// app/statements.cpp -- the statements of a scene file (docs/scene-format.md), one reader each: the
 // shapes, lights, materials, the camera and meshes, each checked as it is read. The file's loop,
 // the settings that come once (size, shading, ...) and the messages' hints are scene_file.cpp's.
 #include "statements.h"
-#include "io.h"
-#include "ray.h"
-#include "robust.h"
+#include "../robust/robust.h"
+#include "app.h"
 
 #include <cstring>
 

@@ -1,12 +1,11 @@
-// scene_file.cpp -- reads scene files (docs/scene-format.md) into a Scene.
+// app/scene_file.cpp -- reads scene files (docs/scene-format.md) into a Scene.
 //
 // One statement a line, `#` comments, tokens between spaces or tabs. Every statement is checked
 // as it is read, and the first problem ends the read with "FILE:LINE: message", the way a
 // compiler reports it. Nothing here prints; the caller decides what to do with the message.
 // Here: the file's loop, the settings that come once, and the hints of an unknown keyword; the
 // statements that add shapes, lights, materials, the camera and meshes are statements.cpp's.
-#include "io.h"
-#include "ray.h"
+#include "app.h"
 #include "statements.h"
 
 #include <cctype>
@@ -22,18 +21,6 @@ struct Declared {
     bool size, camera, ambient, shading, background, depth;
     std::vector<std::pair<int, std::string>> shadingOnly; // line, "NAME: KEY"
 };
-
-void InitScene(Scene *scene) {
-    *scene = Scene();
-    scene->width = scene->height = 512;
-    scene->camera = Camera();
-    scene->camera.kind = CAMERA_PERSPECTIVE;
-    scene->camera.perspective = {{0, 0, 0}, 2, 2, 512, 512};
-    scene->shading = SHADING_FLOOR;
-    scene->ambient = real(0.2);
-    scene->background = {0, 0, 0};
-    scene->depth = 10;
-}
 
 // A statement that may appear once: marks it, or reports the second one.
 static bool Once(const Statement *st, bool *seen, std::string *error) {

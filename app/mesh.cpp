@@ -1,12 +1,11 @@
-// mesh.cpp -- the scene file's `mesh PATH MATERIAL [transform words]`: Wavefront OBJ meshes.
+// app/mesh.cpp -- the scene file's `mesh PATH MATERIAL [transform words]`: Wavefront OBJ meshes.
 //
 // The OBJ file is read a line at a time (ReadTextLine, as scene files are), never whole: only
 // the vertex positions are kept, because faces name them by number, and each face goes straight
 // into the scene's triangles as a fan from its first corner. `v` and `f` are the statements that
 // make geometry; every other statement (texture coordinates, normals, groups, materials, lines,
 // points) is skipped. Errors are values, "MESH:LINE: message", as for scene files.
-#include "io.h"
-#include "ray.h"
+#include "app.h"
 
 #include <algorithm>
 #include <cerrno>

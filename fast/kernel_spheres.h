@@ -32,8 +32,7 @@ static RT_INLINE void Fill(Lanes *v, real x) {
 
 // The ray's six numbers are read one at a time (`volatile` keeps each load whole and apart):
 // GCC would read them as one vector, which cannot be taken from the caller's stores of them, a
-// moment before, until they reach the cache (2% of the Cornell box's time, where every search
-// starts here).
+// moment before, until they reach the cache (every search starts here).
 static RT_INLINE void SplatSphereRay(const Ray *ray, SphereLaneRay *r) {
     const volatile vec3 &origin = ray->origin, &dir = ray->dir;
     vec3 o = {origin.x, origin.y, origin.z}, d = {dir.x, dir.y, dir.z};
@@ -92,7 +91,7 @@ static RT_INLINE unsigned MayMeetOneByOne(const SphereBlock *b, const Ray *ray) 
 const int kChunkBlocks = 64 / kLanes;
 
 // The reference test for the spheres whose bits are set in `live` (bit i: spheres[i]), in
-// scene order, as the plain loop (HitSpheres, geometry.cpp) tests them: each hit lowers *tMax
+// scene order, as the plain loop (HitList, geometry.cpp) tests them: each hit lowers *tMax
 // exactly when the plain loop's would, and a tie keeps the earlier sphere. hit->index is the
 // bit; the caller adds the chunk's first place. Out of line, and with few enough arguments to be
 // reached by a jump: most searches have no such sphere, and they then need no registers saved.
@@ -121,11 +120,11 @@ static RT_INLINE bool HitLive(const Sphere *spheres, uint64_t live, int skip, co
 
 // The bits of the spheres in blocks [first, last) that pass the first step, sphere
 // first * kLanes + j at bit j (at most kChunkBlocks blocks).
-template <bool kWide>
+template <bool kVectors>
 static RT_INLINE uint64_t ChunkMask(const SphereBlock *blocks, int first, int last,
                                     const Ray *ray) {
     uint64_t live = 0;
-    if (kWide) {
+    if (kVectors) {
         SphereLaneRay lanes;
         SplatSphereRay(ray, &lanes);
         for (int k = first; k < last; k++)
@@ -137,29 +136,30 @@ static RT_INLINE uint64_t ChunkMask(const SphereBlock *blocks, int first, int la
     return live;
 }
 
-// The plain sphere loop (HitSpheres) for a scene of at most kChunkBlocks blocks (most scenes):
-// the masks, and only if a sphere passed, one call.
-template <bool kWide>
-static RT_INLINE bool TestOneChunk(const Scene *scene, int skip, const Ray *ray, real tMin,
-                                   real *tMax, bool anyHit, RayHit *hit) {
-    int n = Blocks((int)scene->layout.sphereCount);
-    const SphereBlock *blocks = scene->layout.sphereBlocks.data();
-    // One block (4 spheres in double, 8 in float: the assignment's 3, the Cornell box's 2) without
-    // the loop: about 10 fewer instructions a search (the Cornell box: 530.4 to 527.2 M)
+// The plain loop's spheres (HitList, geometry.cpp) for a scene of at most kChunkBlocks blocks (most
+// scenes): the masks, and only if a sphere passed, one call.
+template <bool kVectors>
+static RT_INLINE bool TestOneChunk(const Scene *scene, const SceneLayout *layout, int skip,
+                                   const Ray *ray, real tMin, real *tMax, bool anyHit,
+                                   RayHit *hit) {
+    int n = Blocks((int)layout->sphereCount);
+    const SphereBlock *blocks = layout->sphereBlocks.data();
+    // One block (4 spheres in double, 8 in float: the assignment's 3, the Cornell box's 2) with
+    // no loop at all
     uint64_t live =
-        n == 1 ? ChunkMask<kWide>(blocks, 0, 1, ray) : ChunkMask<kWide>(blocks, 0, n, ray);
+        n == 1 ? ChunkMask<kVectors>(blocks, 0, 1, ray) : ChunkMask<kVectors>(blocks, 0, n, ray);
     return live != 0 && HitLive(scene->spheres.data(), live, skip, ray, tMin, tMax, anyHit, hit);
 }
 
 // The same for any number of blocks, a chunk at a time.
-template <bool kWide>
-static RT_INLINE bool TestChunks(const Scene *scene, int skip, const Ray *ray, real tMin,
-                                 real *tMax, bool anyHit, RayHit *hit) {
-    const SphereBlock *blocks = scene->layout.sphereBlocks.data();
-    int n = Blocks((int)scene->layout.sphereCount);
+template <bool kVectors>
+static RT_INLINE bool TestChunks(const Scene *scene, const SceneLayout *layout, int skip,
+                                 const Ray *ray, real tMin, real *tMax, bool anyHit, RayHit *hit) {
+    const SphereBlock *blocks = layout->sphereBlocks.data();
+    int n = Blocks((int)layout->sphereCount);
     bool found = false;
     for (int chunk = 0; chunk < n; chunk += kChunkBlocks) {
-        uint64_t live = ChunkMask<kWide>(blocks, chunk, std::min(n, chunk + kChunkBlocks), ray);
+        uint64_t live = ChunkMask<kVectors>(blocks, chunk, std::min(n, chunk + kChunkBlocks), ray);
         int first = chunk * kLanes;
         if (live == 0 || !HitLive(scene->spheres.data() + first, live, skip - first, ray, tMin,
                                   tMax, anyHit, hit))

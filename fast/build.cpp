@@ -8,7 +8,7 @@
 // are vectors of four numbers (GCC/Clang vector extensions, as in kernel_blocks.h), and with AVX2
 // (the kernel's dispatch) one vector is one instruction: min, max and comparison are exact, so
 // every box has the bits of TriangleBox's, and the tree is the same on any machine.
-#include "ray.h"
+#include "fast.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -332,14 +332,14 @@ static int SplitPlain(BuildItem *items, int begin, int end, const NodeBounds *no
                       NodeBounds side[2]) {
     return SplitItems(items, begin, end, node, heuristic, side);
 }
-RT_AVX2 static int SplitWide(BuildItem *items, int begin, int end, const NodeBounds *node,
-                             bool heuristic, NodeBounds side[2]) {
+RT_AVX2 static int SplitVectors(BuildItem *items, int begin, int end, const NodeBounds *node,
+                                bool heuristic, NodeBounds side[2]) {
     return SplitItems(items, begin, end, node, heuristic, side);
 }
 
 int SplitNode(BuildItem *items, int begin, int end, const NodeBounds *node, bool heuristic,
-              bool wide, NodeBounds side[2]) {
-    return (wide ? SplitWide : SplitPlain)(items, begin, end, node, heuristic, side);
+              bool vectors, NodeBounds side[2]) {
+    return (vectors ? SplitVectors : SplitPlain)(items, begin, end, node, heuristic, side);
 }
 
 // MakeBuildItems (layout.h), compiled twice. The box is TriangleBox's, lane by lane: its least and
@@ -372,14 +372,14 @@ static void MakeItemsPlain(const Triangle *triangles, int first, int last, Build
                            NodeBounds *bounds) {
     MakeItems(triangles, first, last, items, bounds);
 }
-RT_AVX2 static void MakeItemsWide(const Triangle *triangles, int first, int last, BuildItem *items,
-                                  NodeBounds *bounds) {
+RT_AVX2 static void MakeItemsVectors(const Triangle *triangles, int first, int last,
+                                     BuildItem *items, NodeBounds *bounds) {
     MakeItems(triangles, first, last, items, bounds);
 }
 
-void MakeBuildItems(const Triangle *triangles, int first, int last, bool wide, BuildItem *items,
+void MakeBuildItems(const Triangle *triangles, int first, int last, bool vectors, BuildItem *items,
                     NodeBounds *bounds) {
-    (wide ? MakeItemsWide : MakeItemsPlain)(triangles, first, last, items, bounds);
+    (vectors ? MakeItemsVectors : MakeItemsPlain)(triangles, first, last, items, bounds);
 }
 
 void BoundsBox(const Bounds *b, Box *out, real *halfArea) {

@@ -3,8 +3,7 @@
 // Included by kernel.cpp alone: the kernel is one translation unit, so that each of its two
 // compiled copies (AVX2 and baseline) inlines all of it.
 #pragma once
-#include "ray.h"
-#include "robust.h"
+#include "fast.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #define RT_DISPATCH 1
@@ -181,14 +180,14 @@ static RT_INLINE bool OutOfReach(const Box *box, int axis, const Search *s, real
 // The full test for the survivors of blocks [first, first + count). A triangle at the same t
 // as the nearest so far counts only if it comes earlier in the scene (so the tMax it is tested
 // against is one step above). True if anything was hit.
-template <int kz, bool kWide>
+template <int kz, bool kVectors>
 static RT_INLINE bool TestBlocks(const TriangleBlock *blocks, int first, int count, Search *s,
                                  RayHit *hit) {
     bool found = false;
     for (const TriangleBlock *b = blocks + first; b < blocks + first + count; b++) {
         unsigned sure;
-        unsigned live =
-            kWide ? Survivors<kz>(b, &s->lanes, &sure) : SurvivorsOneByOne<kz>(b, s->shear, &sure);
+        unsigned live = kVectors ? Survivors<kz>(b, &s->lanes, &sure)
+                                 : SurvivorsOneByOne<kz>(b, s->shear, &sure);
         for (; live != 0; live &= live - 1) {
             int lane = __builtin_ctz(live), index = b->index[lane];
             if (index < 0 || index == s->skip)

@@ -1,12 +1,11 @@
-// text.cpp -- reading text input: lines, tokens and numbers, for scene files and probes alike.
+// app/text.cpp -- reading text input: lines, tokens and numbers, for scene files and probes alike.
 //
 // Input is read a line at a time and never held whole, so a file of any size costs memory only
 // for what it describes. A line ends at LF, CR LF or CR, as a text editor ends it, a comment's
 // line too. A line is bounded (kMaxLineLength; a comment, from `#` to the line's end, is dropped
 // as it is read and may hold anything else), a NUL byte elsewhere marks a file that is not text,
 // and a UTF-8 byte-order mark (what Windows Notepad writes) at the start is skipped.
-#include "io.h"
-#include "ray.h"
+#include "app.h"
 
 #include <algorithm>
 #include <cctype>

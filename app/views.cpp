@@ -1,10 +1,9 @@
-// views.cpp -- debug views: what the primary rays found, drawn as colours instead of light.
+// app/views.cpp -- debug views: what the primary rays found, drawn as colours instead of light.
 //
 // When the image looks wrong, these show which part is wrong: the normals (is a surface turned
 // the right way?), the depth (is the camera where you think?), which object each pixel sees, how
 // many rays each pixel cost, and the shadow mask (lit, blocked, or turned away from the light).
-#include "io.h"
-#include "ray.h"
+#include "app.h"
 
 #include <algorithm>
 
@@ -52,11 +51,11 @@ static int LightState(const Scene *scene, const RenderSettings *settings, const 
     if (!(Dot(hit->normal, light->position - hit->point) > 0))
         return -1;
     Ray shadow;
-    RayStart start;
-    if (!ShadowRay(hit, light->position, &settings->methods, &shadow, &start))
+    SelfHit from;
+    if (!ShadowRay(hit, light->position, &settings->methods, &shadow, &from))
         return 1; // the light is at the point itself: nothing between them
     stats->shadow++;
-    return AnyHitFrom(scene, settings->methods, &shadow, &start, 1) ? 0 : 1;
+    return AnyHitFrom(scene, settings->methods, &shadow, &from, 1) ? 0 : 1;
 }
 
 // One light: white if it lights the point, red if a shape blocks it, dark grey if the surface
@@ -91,7 +90,7 @@ static color ViewValue(const Scene *scene, const RenderSettings *settings, ViewK
                  &ray);
     if (view == VIEW_COST) {
         TraceLog log = {*stats, nullptr, -1, 0}; // counting on from the pixels before
-        TraceRay(scene, settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
+        TraceRay(scene, settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
         *scalar = real(RaysCast(&log.stats) - RaysCast(stats));
         *stats = log.stats;
         return {0, 0, 0};

@@ -1,13 +1,12 @@
-// image.cpp -- writing image files (PNG through libpng's simplified API, binary PPM) and comparing
-// images. Reading them (--compare) is image_read.cpp.
+// app/image.cpp -- writing image files (PNG through libpng's simplified API, binary PPM) and
+// comparing images. Reading them (--compare) is image_read.cpp.
 //
 // An image is written to a temporary file beside the target and renamed over it only when the
 // whole file is on disk, so a failed or interrupted run never leaves a broken or half-written
 // image, and an existing file stays exactly as it was. What the output path may be is checked
 // before any work is done (CheckOutputPath): never an input of the same run, never a file made
 // read-only; devices and FIFOs are written to directly.
-#include "io.h"
-#include "ray.h"
+#include "app.h"
 
 #include <algorithm>
 #include <cctype>

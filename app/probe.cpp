@@ -1,10 +1,9 @@
-// probe.cpp -- the handout's debugging advice as a feature: fire one ray, read the hit.
+// app/probe.cpp -- the handout's debugging advice as a feature: fire one ray, read the hit.
 //
 // `--ray` and `--rays` print the nearest hit of a ray as one JSON line; `--pixel` prints the whole
 // tree of rays behind one pixel. Numbers are printed in the shortest form that reads back
 // exactly.
-#include "io.h"
-#include "ray.h"
+#include "app.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -158,6 +157,6 @@ std::string PixelTreeJson(const Scene *scene, const RenderSettings *settings, in
     if (scene->shading == SHADING_PATH) // the centre's first path (sample 0)
         TracePath(scene, settings, &ray, x, y, 0, &log);
     else
-        TraceRay(scene, settings, RAY_PRIMARY, &ray, &kFromTheEye, RayChain{1, 1}, &log);
+        TraceRay(scene, settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
     return NodeJson(scene, tree, 0);
 }

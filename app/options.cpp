@@ -1,8 +1,12 @@
-// options.cpp -- the command line: `ray [SCENE] [options]`, as the README describes it.
+// app/options.cpp -- the command line: `ray [SCENE] [options]`, as the README describes it.
 //
 // A table of the options and how many values each takes, a parser per value kind, and the
-// checks of what goes together. Nothing here prints; main does (ray.cpp).
-#include "options.h"
+// checks of what goes together; then the render settings the options choose. Nothing here
+// prints; main does (ray.cpp).
+#include "app.h"
+
+#include <thread>
+#include <unistd.h>
 
 #include <cstring>
 #include <vector>
@@ -40,9 +44,12 @@ const char *kUsage =
     "                           bound, ignore hits closer than E (1e-4), or skip the shape\n"
     "  --camera-ray eye|slides  primary rays from the eye, or from the screen with unit length\n"
     "  --fresnel exact|schlick  how much glass reflects\n"
-    "  --layout auto|list|bvh   how the watertight test searches the triangles: a BVH from 32\n"
-    "                           triangles on (auto, default), one list, or a BVH; the answers\n"
-    "                           are the same\n"
+    "  --layout auto|list|bvh|plain\n"
+    "                           how the robust tests search the shapes: blocks, with a BVH\n"
+    "                           from 32 triangles on (auto, default), one list of blocks, a\n"
+    "                           BVH, or the plain loop over the shapes; the answers are the same\n"
+    "  --estimator full|journal `shading path`: rt's estimator (default: the options below), or\n"
+    "                           the journal's, as Ray Tracing in One Weekend writes it\n"
     "  --scatter cosine|uniform `shading path`: diffuse directions drawn by cos(theta) (default)\n"
     "                           or uniformly over the hemisphere\n"
     "  --lights mis|nee|none    `shading path`: how emitting shapes are found: sampled and\n"
@@ -180,7 +187,8 @@ struct ChoiceOption {
 static const ChoiceOption kChoices[] = {
     {"--aa", {"grid", "jitter", "adaptive"}, &Options::sampling},
     {"--methods", {"robust", "handout"}, &Options::methodSet},
-    {"--layout", {"auto", "list", "bvh"}, &Options::layout},
+    {"--layout", {"auto", "list", "bvh", "plain"}, &Options::layout},
+    {"--estimator", {"full", "journal"}, &Options::estimator},
     {"--scatter", {"cosine", "uniform"}, &Options::scatter},
     {"--lights", {"mis", "nee", "none"}, &Options::lights},
     {"--roulette", {"on", "off"}, &Options::roulette},
@@ -243,7 +251,7 @@ static const struct {
                 {"--view", 1},    {"--ray", 6},       {"--rays", 1},       {"--pixel", 2},
                 {"--compare", 2}, {"--tolerance", 1}, {"--stats", 0},      {"--help", 0},
                 {"-h", 0},        {"--version", 0},   {"--layout", 1},     {"--scatter", 1},
-                {"--lights", 1},  {"--roulette", 1},  {"--seed", 1}};
+                {"--lights", 1},  {"--roulette", 1},  {"--seed", 1},       {"--estimator", 1}};
 
 // Options that would change nothing in the mode chosen are errors, not silently ignored: a probe
 // asks about one given ray (no image, no samples, no threads, no camera, nothing it leads to);
@@ -260,11 +268,13 @@ static bool CheckUnused(const Options *opt, const std::string &seen, std::string
         {opt->probeRay || !opt->raysFile.empty(),
          opt->probeRay ? "--ray" : "--rays",
          {"--size", "--spp", "--aa", "--threads", "--depth", "--view", "--stats", "--seed",
-          "--scatter", "--lights", "--roulette", "--self-hit", "--camera-ray", "--fresnel"}},
+          "--scatter", "--lights", "--roulette", "--estimator", "--self-hit", "--camera-ray",
+          "--fresnel"}},
         {opt->pixel, "--pixel", {"--spp", "--aa", "--threads", "--stats"}},
         {opt->view, // one ray through each pixel's centre, on one thread
          "--view",
-         {"--spp", "--aa", "--threads", "--seed", "--scatter", "--lights", "--roulette"}},
+         {"--spp", "--aa", "--threads", "--seed", "--scatter", "--lights", "--roulette",
+          "--estimator"}},
         // what the eye ray found: no ray leaves a surface, no glass is shaded, no chain follows
         {opt->view && opt->viewKind != VIEW_COST && opt->viewKind != VIEW_SHADOW,
          "--view normal, depth or id",
@@ -274,7 +284,7 @@ static bool CheckUnused(const Options *opt, const std::string &seen, std::string
          "--compare",
          {"--size", "--spp", "--aa", "--threads", "--depth", "--methods", "--sphere", "--triangle",
           "--self-hit", "--camera-ray", "--fresnel", "--layout", "--stats", "--seed", "--scatter",
-          "--lights", "--roulette"}},
+          "--lights", "--roulette", "--estimator"}},
         {opt->spp == 1, "one sample a pixel", {"--aa"}},
     };
     for (const Rule &r : rules) {
@@ -301,10 +311,11 @@ static bool CheckCombinations(const Options *opt, const std::string &seen, std::
         *error = "choose one of --ray, --rays, --pixel, --view and --compare";
         return false;
     }
-    if (seen.find(" --layout ") != std::string::npos &&
-        ChosenMethods(opt).triangle != TRIANGLE_WATERTIGHT) {
-        *error = "--layout goes with the watertight triangle test: the handouts' triangle tests "
-                 "look at every triangle, as written";
+    Methods methods = ChosenMethods(opt);
+    if (seen.find(" --layout ") != std::string::npos && opt->layout != kPlainLayout &&
+        (methods.triangle != TRIANGLE_WATERTIGHT || methods.sphere != SPHERE_STABLE)) {
+        *error = "--layout auto, list and bvh go with the robust sphere and triangle tests: the "
+                 "handouts' tests run in the plain loop, as written";
         return false;
     }
     if (!opt->output.empty() && (opt->probeRay || opt->pixel || !opt->raysFile.empty())) {
@@ -389,4 +400,34 @@ bool ParseOptions(int argc, char **argv, Options *opt, std::string *error) {
         return false;
     }
     return CheckCombinations(opt, seen, error);
+}
+
+// The progress line on standard error: percentage, rays per second (every kind), time left,
+// redrawn in place, and cleared at the end.
+static void ShowProgress(const RenderProgress *p) {
+    if (p->finished)
+        fprintf(stderr, "\r%*s\r", 45, "");
+    else
+        fprintf(stderr, "\r%5.1f%%  %7.2f Mrays/s  %5.1f s left ", 100 * p->done,
+                p->raysPerSecond / 1e6, p->secondsLeft);
+    fflush(stderr);
+}
+
+RenderSettings ChosenSettings(const Options *opt, const Scene *scene) {
+    RenderSettings settings;
+    settings.width = opt->width ? opt->width : scene->width;
+    settings.height = opt->height ? opt->height : scene->height;
+    settings.samplesPerPixel = opt->spp;
+    settings.sampling = (SampleMethod)opt->sampling;
+    settings.depth = opt->depth ? opt->depth : scene->depth;
+    unsigned hardware = std::thread::hardware_concurrency();
+    settings.threads = opt->threads ? opt->threads : (hardware ? (int)hardware : 1);
+    if (opt->view)
+        settings.threads = 1; // (RenderView draws on one thread)
+    settings.methods = ChosenMethods(opt);
+    settings.path = {(Estimator)opt->estimator, (ScatterMethod)opt->scatter,
+                     (LightMethod)opt->lights, opt->roulette == 1, opt->seed};
+    settings.progress = isatty(2) ? ShowProgress : nullptr; // (a line drawn in place: a terminal's)
+    PlanRender(scene, &settings);
+    return settings;
 }

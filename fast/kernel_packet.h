@@ -1,6 +1,6 @@
-// kernel_packet.h -- the fast shape loop turned the other way for the rays from the eye: kLanes
-// rays in the lanes, one shape at a time, where kernel_blocks.h and kernel_spheres.h put kLanes
-// shapes in the lanes for one ray. Included by kernel.cpp alone, for its AVX2 copy.
+// fast/kernel_packet.h -- the fast shape loop turned the other way for the rays from the eye:
+// kLanes rays in the lanes, one shape at a time, where kernel_blocks.h and kernel_spheres.h put
+// kLanes shapes in the lanes for one ray. Included by kernel.cpp alone, for its AVX2 copy.
 //
 // Why: a pixel's samples start at the same eye and go in nearly the same direction, so they meet
 // the same shapes. Tested one ray at a time, each sample pays for the blocks' half-empty lanes
@@ -10,7 +10,8 @@
 // and the shape's number in every lane (the same operations in the same order, unfused), and
 // the shapes that pass go, ray by ray and in scene order, to the very reference functions the
 // one-ray kernel calls, with the same interval. So the rays see the shapes in the order the plain
-// loop gives them, and every tie is broken as it breaks them.
+// loop gives them, and every tie is broken as it breaks them. A packet is a pixel's eye rays:
+// each searches t in (0, infinity) and leaves no surface.
 #pragma once
 #include "kernel_spheres.h"
 #include "plane_lanes.h"
@@ -30,25 +31,20 @@ struct PacketLanes {
 // Each ray's search so far, as TestBlocks and HitLiveSpheres keep it for one ray.
 struct PacketSearch {
     const RayPacket *packet;
-    unsigned active;                 // the rays still searching (an any-hit search drops each hit)
-    real tMin[kLanes], tMax[kLanes]; // each ray's interval; tMax: its nearest hit so far
-    int skipSphere[kLanes], skipTriangle[kLanes]; // the shape each ray leaves (RayStart); -1: none
+    unsigned active;    // the packet's rays, a bit each
+    real tMax[kLanes];  // each ray's nearest hit so far (infinity: none)
     int best[kLanes];   // each ray's nearest triangle so far; -1: none (or only a sphere)
     bool found[kLanes]; // whether each ray has hit anything
     RayHit *hits;       // each ray's nearest hit
     PlaneRays plane[kLanes / kPlaneLanes]; // the rays again, four at a time, for tier 1's lanes
 };
 
-// Ray r has hit a shape: an any-hit search is over for it.
-static RT_INLINE void Found(PacketSearch *p, int r) {
-    p->found[r] = true;
-    if (p->packet->anyHit)
-        p->active &= ~(1u << r);
-}
+// Ray r has hit a shape.
+static RT_INLINE void Found(PacketSearch *p, int r) { p->found[r] = true; }
 
 // One number of each ray of the packet (`value` of the ray in each lane: ray `lane`, or the first
 // past `count`) as a vector, made in registers: a vector of scalars stored to memory and at once
-// read back as one waits for the stores (the assignment at 16 spp took 0.60 s against 0.47).
+// read back as one waits for the stores.
 template <typename Value, size_t... lane>
 static RT_INLINE Lanes LanesOf(const RayPacket *q, Value value, std::index_sequence<lane...>) {
     return Lanes{value(&q->rays[(int)lane < q->count ? lane : 0])...};
@@ -58,11 +54,10 @@ template <typename Value> static RT_INLINE Lanes LanesOf(const RayPacket *q, Val
 }
 
 // Everything a packet's search starts from: the lanes (the rays coordinate by coordinate, each
-// lane past `count` repeating the first ray); in one pass over its rays, each ray's interval and
-// the shapes it skips, and the rays four at a time for tier 1's lanes (plane_lanes.h). Then
-// the shear, in lanes, as ShearRay computes it for each ray (watertight.cpp): the axes renamed
-// so that kz, the largest component of every ray's direction, is z, and sx = d[kx] / d[kz],
-// sy = d[ky] / d[kz].
+// lane past `count` repeating the first ray); each ray's search not yet begun, and the rays four
+// at a time for tier 1's lanes (plane_lanes.h); and the shear, in lanes, as ShearRay computes it
+// for each ray (watertight.cpp): the axes renamed so that kz, the largest component of every
+// ray's direction, is z, and sx = d[kx] / d[kz], sy = d[ky] / d[kz].
 template <int kz> static RT_INLINE void StartPacket(PacketSearch *p, PacketLanes *l) {
     const RayPacket *q = p->packet;
     l->px = LanesOf(q, [](const Ray *ray) { return ray->origin.x; });
@@ -73,18 +68,13 @@ template <int kz> static RT_INLINE void StartPacket(PacketSearch *p, PacketLanes
     l->dz = LanesOf(q, [](const Ray *ray) { return ray->dir.z; });
     l->a = LanesOf(q, [](const Ray *ray) { return Dot(ray->dir, ray->dir); });
     for (int lane = 0; lane < kLanes; lane++) {
-        int r = lane < q->count ? lane : 0;
-        const Ray *ray = &q->rays[r];
-        const RayStart *start = &q->starts[r];
-        p->tMin[lane] = start->tMin, p->tMax[lane] = q->tMax, p->best[lane] = -1;
-        p->found[lane] = false;
-        p->skipSphere[lane] = start->shape == SHAPE_SPHERE ? start->index : -1;
-        p->skipTriangle[lane] = start->shape == SHAPE_TRIANGLE ? start->index : -1;
+        const Ray *ray = &q->rays[lane < q->count ? lane : 0];
+        p->tMax[lane] = kInfinity, p->best[lane] = -1, p->found[lane] = false;
         PlaneRays *w = &p->plane[lane / kPlaneLanes];
         int k = lane % kPlaneLanes;
         w->ox[k] = ray->origin.x, w->oy[k] = ray->origin.y, w->oz[k] = ray->origin.z;
         w->dx[k] = ray->dir.x, w->dy[k] = ray->dir.y, w->dz[k] = ray->dir.z;
-        w->tMin[k] = start->tMin, w->originPad[k] = OriginPad(ray);
+        w->tMin[k] = 0, w->originPad[k] = OriginPad(ray);
     }
     const Lanes *o[3] = {&l->px, &l->py, &l->pz}, *d[3] = {&l->dx, &l->dy, &l->dz};
     l->ox = *o[(kz + 1) % 3], l->oy = *o[(kz + 2) % 3], l->oz = *o[kz];
@@ -107,9 +97,10 @@ static RT_INLINE unsigned RaysMayMeet(vec3 c, real r2, const PacketLanes *l) {
 
 // The spheres, in scene order (HitLiveSpheres for each ray): only sphere blocks' lanes that hold
 // one. Each hit lowers its ray's tMax.
-static RT_INLINE void PacketSpheres(const Scene *scene, const PacketLanes *l, PacketSearch *p) {
-    const std::vector<SphereBlock> &blocks = scene->layout.sphereBlocks;
-    for (size_t k = 0; k < blocks.size() && p->active != 0; k++) {
+static RT_INLINE void PacketSpheres(const Scene *scene, const SceneLayout *layout,
+                                    const PacketLanes *l, PacketSearch *p) {
+    const std::vector<SphereBlock> &blocks = layout->sphereBlocks;
+    for (size_t k = 0; k < blocks.size(); k++) {
         const SphereBlock *b = &blocks[k];
         for (unsigned left = b->filled; left != 0; left &= left - 1) {
             int lane = __builtin_ctz(left), i = (int)k * kLanes + lane;
@@ -118,9 +109,7 @@ static RT_INLINE void PacketSpheres(const Scene *scene, const PacketLanes *l, Pa
             for (; live != 0; live &= live - 1) {
                 int r = __builtin_ctz(live);
                 RayHit *hit = &p->hits[r];
-                if (i == p->skipSphere[r] ||
-                    !IntersectSphere(&scene->spheres[i], &p->packet->rays[r], p->tMin[r],
-                                     p->tMax[r], hit))
+                if (!IntersectSphere(&scene->spheres[i], &p->packet->rays[r], 0, p->tMax[r], hit))
                     continue;
                 hit->index = i;
                 p->tMax[r] = hit->t;
@@ -175,10 +164,10 @@ static RT_INLINE void Take(PacketSearch *p, int r, int index, bool found) {
 // tested against `limit[r]`: RobustPlaneHit for each, with tier 1 in lanes for those that share
 // a vector with another (the rest is the scalar function's: PlaneHitRecord for a hit it settles,
 // RobustPlaneHit from the start for a ray it leaves unsure).
-static RT_INLINE void PlaneHits(const Scene *scene, int index, unsigned rays, const real *limit,
-                                PacketSearch *p) {
+static RT_INLINE void PlaneHits(const Scene *scene, const SceneLayout *layout, int index,
+                                unsigned rays, const real *limit, PacketSearch *p) {
     const Triangle *tri = &scene->triangles[index];
-    const TriangleSetUp *setUp = &scene->layout.setUps[index];
+    const TriangleSetUp *setUp = &layout->setUps[index];
     const RayPacket *q = p->packet;
     if (!setUp->hasArea) // no plane: RobustPlaneHit finds nothing
         return;
@@ -188,11 +177,11 @@ static RT_INLINE void PlaneHits(const Scene *scene, int index, unsigned rays, co
             for (; mine != 0; mine &= mine - 1) {
                 int r = chunk * kPlaneLanes + __builtin_ctz(mine);
                 Take(p, r, index,
-                     RobustPlaneHit(tri, setUp, &q->rays[r], p->tMin[r], limit[r], &p->hits[r]));
+                     RobustPlaneHit(tri, setUp, &q->rays[r], 0, limit[r], &p->hits[r]));
             }
             continue;
         }
-        PlaneLanes tMax = Same(kInfinity); // (in a register, lane by lane: see StartPacket)
+        PlaneLanes tMax = Same(kInfinity); // (in a register, lane by lane)
         for (unsigned left = mine; left != 0; left &= left - 1) {
             int k = __builtin_ctz(left);
             tMax[k] = limit[chunk * kPlaneLanes + k];
@@ -206,20 +195,19 @@ static RT_INLINE void PlaneHits(const Scene *scene, int index, unsigned rays, co
             if (answer[k] == PLANE_HIT)
                 Take(p, r, index, PlaneHitRecord(tri, setUp, ray, plane[k], &p->hits[r]));
             else if (answer[k] == PLANE_UNSURE)
-                Take(p, r, index,
-                     RobustPlaneHit(tri, setUp, ray, p->tMin[r], limit[r], &p->hits[r]));
+                Take(p, r, index, RobustPlaneHit(tri, setUp, ray, 0, limit[r], &p->hits[r]));
         }
     }
 }
 
 // The triangles, block by block and lane by lane (scene order in a list layout), after the
-// spheres: TestBlocks' survivor step for each ray that survives, with its own interval (OutOfReach
-// is not tried here).
+// spheres: TestBlocks' survivor step for each ray that survives (OutOfReach is not tried here).
 template <int kz>
-static RT_INLINE void PacketTriangles(const Scene *scene, const PacketLanes *l, PacketSearch *p) {
+static RT_INLINE void PacketTriangles(const Scene *scene, const SceneLayout *layout,
+                                      const PacketLanes *l, PacketSearch *p) {
     const RayPacket *q = p->packet;
-    const std::vector<TriangleBlock> &blocks = scene->layout.blocks;
-    for (size_t k = 0; k < blocks.size() && p->active != 0; k++) {
+    const std::vector<TriangleBlock> &blocks = layout->blocks;
+    for (size_t k = 0; k < blocks.size(); k++) {
         const TriangleBlock *b = &blocks[k];
         for (int lane = 0; lane < kLanes; lane++) {
             int index = b->index[lane];
@@ -230,8 +218,6 @@ static RT_INLINE void PacketTriangles(const Scene *scene, const PacketLanes *l, 
             real limit[kLanes];
             for (; live != 0; live &= live - 1) {
                 int r = __builtin_ctz(live);
-                if (index == p->skipTriangle[r])
-                    continue;
                 limit[r] = p->best[r] >= 0 && index < p->best[r] ? NextAfter(p->tMax[r], true)
                                                                  : p->tMax[r];
                 if (sure >> r & 1u) {
@@ -240,19 +226,20 @@ static RT_INLINE void PacketTriangles(const Scene *scene, const PacketLanes *l, 
                 }
                 RayShear shear = LaneShear(l, kz, r);
                 Take(p, r, index,
-                     IntersectWatertight(&scene->triangles[index], &scene->layout.setUps[index],
-                                         &q->rays[r], &shear, p->tMin[r], limit[r], &p->hits[r]));
+                     IntersectWatertight(&scene->triangles[index], &layout->setUps[index],
+                                         &q->rays[r], &shear, 0, limit[r], &p->hits[r]));
             }
             if (planeRays != 0)
-                PlaneHits(scene, index, planeRays, limit, p);
+                PlaneHits(scene, layout, index, planeRays, limit, p);
         }
     }
 }
 
 // The whole search for a packet whose rays share the shear's axis kz (RayPacket::kz).
-template <int kz> static RT_INLINE void SearchPacket(const Scene *scene, PacketSearch *p) {
+template <int kz>
+static RT_INLINE void SearchPacket(const Scene *scene, const SceneLayout *layout, PacketSearch *p) {
     PacketLanes l;
     StartPacket<kz>(p, &l);
-    PacketSpheres(scene, &l, p);
-    PacketTriangles<kz>(scene, &l, p);
+    PacketSpheres(scene, layout, &l, p);
+    PacketTriangles<kz>(scene, layout, &l, p);
 }

@@ -1,8 +1,7 @@
-// image_read.cpp -- reading images for --compare: PNG (through libpng's simplified API) and PPM,
-// binary (P6, what rt writes) or plain text (P3, what many a first ray tracer prints), into
+// app/image_read.cpp -- reading images for --compare: PNG (through libpng's simplified API) and
+// PPM, binary (P6, what rt writes) or plain text (P3, what many a first ray tracer prints), into
 // 8-bit RGB. A file is read whole first, front to back, so a pipe serves as well as a file.
-#include "io.h"
-#include "ray.h"
+#include "app.h"
 
 #include <cctype>
 #include <cerrno>

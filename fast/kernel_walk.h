@@ -6,13 +6,13 @@
 
 // The four children of a node tested at once: SlabInterval for each, lane by lane, with the
 // same operations in the same order (so a child's window is exactly what SlabInterval gives).
-typedef real Quad __attribute__((vector_size(kWidth * sizeof(real))));
+typedef real Quad __attribute__((vector_size(kChildren * sizeof(real))));
 typedef decltype(Quad() < Quad()) QuadMask;
 
 static RT_INLINE void LoadQuad(Quad *v, const real *p) { memcpy(v, p, sizeof *v); }
 static RT_INLINE void SplatQuad(Quad *v, real x) {
     *v = Quad{};
-    for (int i = 0; i < kWidth; i++)
+    for (int i = 0; i < kChildren; i++)
         (*v)[i] = x;
 }
 
@@ -89,16 +89,16 @@ static RT_INLINE void ChildWindows(const BvhNode *n, const NodeRay *r, const Qua
 // have no "movemask"; two shuffles gather a byte of each lane's compare (all ones or none)
 // into one word, which GCC and clang compile to three instructions with AVX2. Without it the
 // shuffles become a dozen moves through memory, and four scalar compares are cheaper.
-typedef int QuadInts __attribute__((vector_size(kWidth * sizeof(int))));   // a node's child ints
-typedef int LaneInts __attribute__((vector_size(sizeof(Quad))));           // a QuadMask as ints
-typedef char QuadBytes __attribute__((vector_size(kWidth * sizeof(int)))); // QuadInts as bytes
-typedef char ChildBytes __attribute__((vector_size(kWidth)));              // a byte a child
+typedef int QuadInts __attribute__((vector_size(kChildren * sizeof(int))));   // a node's child ints
+typedef int LaneInts __attribute__((vector_size(sizeof(Quad))));              // a QuadMask as ints
+typedef char QuadBytes __attribute__((vector_size(kChildren * sizeof(int)))); // QuadInts as bytes
+typedef char ChildBytes __attribute__((vector_size(kChildren)));              // a byte a child
 
-template <bool kWide>
+template <bool kVectors>
 static RT_INLINE unsigned OpenChildren(const BvhNode *n, const Quad *near, const Quad *far) {
-    if (!kWide) {
+    if (!kVectors) {
         unsigned bits = 0;
-        for (int k = 0; k < kWidth; k++)
+        for (int k = 0; k < kChildren; k++)
             bits |= (unsigned)((*near)[k] <= (*far)[k] && n->blocks[k] >= 0) << (8 * k);
         return bits;
     }
@@ -130,7 +130,7 @@ const int kMaxDepth = 128;
 
 // Three or four open children (bits as OpenChildren gives them) onto the stack by insertion,
 // farthest first (a later child above an earlier one at the same near), and the nearest off
-// it again as *next. (The stack has room for the fourth for this moment: kWidth above.)
+// it again as *next. (The stack has room for the fourth for this moment: kChildren above.)
 static RT_INLINE void SortChildren(const BvhNode *n, unsigned open, const Quad *near,
                                    Pending *stack, int *top, Pending *next) {
     Pending *sorted = stack + *top;
@@ -150,12 +150,12 @@ static RT_INLINE void SortChildren(const BvhNode *n, unsigned open, const Quad *
 // that begin at the same t the later child goes first. False if none is open. One or two open
 // children (nine visits in ten on a large mesh) take no loop: one is next, and of two the
 // nearer is next and the other waits.
-template <bool kWide>
+template <bool kVectors>
 static RT_INLINE bool VisitNode(const BvhNode *n, const NodeRay *r, const Quad *tMax,
                                 Pending *stack, int *top, Pending *next) {
     Quad near, far;
     ChildWindows(n, r, tMax, &near, &far);
-    unsigned open = OpenChildren<kWide>(n, &near, &far);
+    unsigned open = OpenChildren<kVectors>(n, &near, &far);
     if (open == 0)
         return false;
     unsigned rest = open & (open - 1);
@@ -181,9 +181,9 @@ static RT_INLINE bool VisitNode(const BvhNode *n, const NodeRay *r, const Quad *
 // tMax is visited: it may hold a tie that an earlier triangle wins.) A node's nearest open
 // child is visited next without going through the stack: tMax has not moved since its window
 // was checked.
-template <int kz, bool kWide>
+template <int kz, bool kVectors>
 static RT_INLINE bool WalkTree(const SceneLayout *layout, Search *s, RayHit *hit) {
-    Pending stack[3 * kMaxDepth + kWidth];
+    Pending stack[3 * kMaxDepth + kChildren];
     int top = 0;
     NodeRay r;
     MakeNodeRay(s->ray, s->tMin, &layout->nodes[0], &r);
@@ -194,9 +194,10 @@ static RT_INLINE bool WalkTree(const SceneLayout *layout, Search *s, RayHit *hit
     Pending next = {0, 0, -kInfinity}; // the root, whose children are all the triangles
     for (;;) {
         if (next.blocks == 0) {
-            if (VisitNode<kWide>(&nodes[next.child], &r, &tMax, stack, &top, &next))
+            if (VisitNode<kVectors>(&nodes[next.child], &r, &tMax, stack, &top, &next))
                 continue;
-        } else if (TestBlocks<kz, kWide>(layout->blocks.data(), next.child, next.blocks, s, hit)) {
+        } else if (TestBlocks<kz, kVectors>(layout->blocks.data(), next.child, next.blocks, s,
+                                            hit)) {
             found = true;
             if (s->anyHit)
                 return true;

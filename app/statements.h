@@ -1,8 +1,8 @@
-// statements.h -- what the scene-file reader (scene_file.cpp) shares with the readers of its
+// app/statements.h -- what the scene-file reader (scene_file.cpp) shares with the readers of its
 // statements (statements.cpp): a statement as read, the checks of its values, and a reader for
 // each statement that adds a shape, a light, a material, the camera or a mesh.
 #pragma once
-#include "ray.h"
+#include "app.h"
 
 #include <cstddef>
 #include <string>

@@ -1,11 +1,114 @@
-// robust.h -- the parts of the robust triangle test that several files share: boxes along a
-// ray (the window a triangle's hit lies in, and the BVH's box test), the plane's t and its
-// error bound (plane.cpp), the watertight test's shear (watertight.cpp), and rays that leave a
-// surface (OffsetRayOrigin, PassesOver, StartLeaving: geometry.cpp and path.cpp).
+// robust/robust.h -- the robust wing: what rt computes beyond the handouts so that no answer
+// depends on the scene's scale, and what the core calls at its `// robust:` lines.
+//
+// Here: rays whose direction is rescaled by a power of two (rescale.cpp); boxes along a ray (the
+// window a triangle's hit lies in, which the BVH's boxes share); the plane's t and its error bound
+// (plane.cpp); the watertight inside test's shear (watertight.cpp); and how a ray leaves a surface
+// without hitting it again (OffsetRayOrigin, PassesOver, StartLeaving: geometry.cpp and path.cpp).
 #pragma once
-#include "ray.h"
+#include "../ray.h"
 
-// ---- boxes along a ray (plane.cpp and the BVH walk, kernel_walk.h) ---------------------------
+// Always inlined, or never and laid out apart: the robust tests' common case stays one small
+// function whose numbers stay in registers, and their rare tiers stay out of its way. (Attributes
+// of GCC and clang; elsewhere plain inline and nothing, with the same answers.)
+#if defined(__GNUC__)
+#define RT_INLINE inline __attribute__((always_inline))
+#define RT_COLD __attribute__((noinline, cold))
+#else
+#define RT_INLINE inline
+#define RT_COLD
+#endif
+
+// The number next to x toward +infinity (up) or -infinity: std::nextafter(x, +-infinity), bit
+// for bit, without the library call. Away from 0 the neighbour is the bit pattern one step
+// further from or nearer to 0; from 0 it is the smallest subnormal.
+inline real NextAfter(real x, bool up) {
+    if (x != x || (x == (up ? kInfinity : -kInfinity)))
+        return x; // NaN, or already the end it moves toward
+    if (x == 0)
+        return up ? std::numeric_limits<real>::denorm_min()
+                  : -std::numeric_limits<real>::denorm_min();
+#ifdef RT_FLOAT
+    uint32_t bits;
+#else
+    uint64_t bits;
+#endif
+    memcpy(&bits, &x, sizeof bits);
+    bits = (x > 0) == up ? bits + 1 : bits - 1;
+    memcpy(&x, &bits, sizeof x);
+    return x;
+}
+
+// A vector in double, whatever `real` is: the plane's first tier computes in double.
+struct dvec3 {
+    double x, y, z;
+};
+
+// ---- rescale.cpp: rays whose direction is too large or too small to square ------------------
+
+// Whether a ray's direction is searched for as it is: inside kDirectionWindow (numbers.h), which
+// ScaleRay leaves alone.
+inline bool SearchedAsIs(vec3 dir) { return WithinWindow(MaxComponent(dir), kDirectionWindow); }
+
+// A ray whose direction lies outside kDirectionWindow, rescaled to a largest component in [1, 2),
+// with its interval, so that no shape test squares or divides a direction of 1e-200 or 1e200 out
+// of range. Scaling d by 2^k scales every t by 2^-k exactly; ScaleBack undoes it. k = 0: the
+// direction is inside the window, and the ray is searched as given (`ray` is not set).
+struct ScaledRay {
+    Ray ray;
+    int k;
+    real tMin, tMax;
+};
+
+// The rescaling itself, for a direction outside the window (ScaleRay).
+bool RescaleRay(const Ray *ray, ScaledRay *s);
+
+// The ray rescaled where its direction lies outside the window, and (tMin, tMax) with it, cut so
+// that every t' in it comes back inside (tMin, tMax). False for a direction that is zero or not
+// finite: such a ray has no answer. (Inline: every search starts here, and almost every
+// direction is inside the window.)
+inline bool ScaleRay(const Ray *ray, real tMin, real tMax, ScaledRay *s) {
+    s->k = 0, s->tMin = tMin, s->tMax = tMax;
+    return SearchedAsIs(ray->dir) || RescaleRay(ray, s);
+}
+
+// The ray a search follows: the rescaled one, or the one given.
+inline const Ray *SearchedRay(const ScaledRay *s, const Ray *given) {
+    return s->k == 0 ? given : &s->ray;
+}
+
+// The hit's t in units of the original direction; false if that leaves (tMin, tMax) by
+// overflowing or underflowing.
+inline bool ScaleBack(const ScaledRay *s, real tMin, real tMax, RayHit *hit) {
+    if (s->k == 0)
+        return true;
+    hit->t = ScaleByPowerOfTwo(hit->t, s->k);
+    return hit->t > tMin && hit->t < tMax;
+}
+
+// ---- boxes and a triangle's set-up (plane.cpp, and the BVH of fast/) ------------------------
+
+// An axis-aligned box, and its largest |coordinate| (TriangleBox and SlabInterval).
+struct Box {
+    real lo[3], hi[3];
+    real size;
+};
+
+// What a triangle's hit needs that does not depend on the ray (plane.cpp): the box that holds
+// every hit (TriangleBox, the window), and the plane's normal as the first tier rounds it. The
+// committed scene (fast/) keeps one for each triangle; the plain loop makes it as it goes. (The
+// small members sit together after the box, so that no padding follows each.)
+struct TriangleSetUp {
+    Box box;
+    int scale;          // the edges are multiplied by 2^scale before their cross product
+    bool normalKnown;   // nError small against n: the first half of FirstOrderHolds (plane.cpp)
+    unsigned char flat; // the axis of n's largest component: the one the plane most nearly faces
+    bool hasArea;       // n is neither 0 nor beyond the range of numbers
+    dvec3 n;            // (b - a) 2^scale x (c - a) 2^scale, rounded
+    dvec3 nError;       // per component of n, a bound on its rounding error
+    vec3 normal;        // n / |n|, for shading
+    real awayShare;     // for RayHit::awayShare: > 0 where normalKnown, else 0
+};
 
 // Where a ray's line passes through an axis-aligned box, widened by kBoxAllowance of the
 // coordinates' sizes: the box test of the BVH, and the window a triangle's hit must lie in.
@@ -81,7 +184,7 @@ inline Box TriangleBox(const Triangle *tri) {
 
 // ---- plane.cpp: where a ray meets a triangle's plane -------------------------------------------
 
-// Fills *setUp (layout.h) for tri: its box, its normal from edges scaled by a power of two, that
+// Fills *setUp for tri: its box, its normal from edges scaled by a power of two, that
 // normal's error bound, and whether the first tier's bound may be trusted (plane.cpp).
 void SetUpTriangle(const Triangle *tri, TriangleSetUp *setUp);
 
@@ -96,7 +199,7 @@ bool EdgesFinite(const Triangle *tri);
 bool RobustPlaneHit(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray, real tMin,
                     real tMax, RayHit *hit);
 
-// Tier 1 of the plane's t (plane.cpp), whose numbers the kernel's packets share (plane_lanes.h):
+// Tier 1 of the plane's t (plane.cpp), whose numbers fast/'s packets share (fast/plane_lanes.h):
 // the unit roundoff of double and gamma(n) for it (Higham 2002, §3.1; Gamma has them for `real`).
 constexpr double kU = std::numeric_limits<double>::epsilon() / 2;
 constexpr double GammaD(int n) { return n * kU / (1 - n * kU); }
@@ -109,7 +212,7 @@ constexpr double GammaD(int n) { return n * kU / (1 - n * kU); }
 // point is kept in float, and a t known to a few float roundings is all that point can use.
 const double kPlainRelativeError = 32 * (double)kUnitRoundoff;
 
-// Tier 1's bound is first order; FirstOrderHolds (plane.cpp) believes it only while the normal's
+// Tier 1's bound is first order; FirstOrderHolds believes it only while the normal's
 // error and n.d's error are each within this share of what they are errors of. (Then what the
 // bound leaves out is at most about 2^-9 of what it keeps, which its factor of 2 covers:
 // FirstOrderHolds says how.)
@@ -120,7 +223,7 @@ struct PlaneT {
     double t, error;
 };
 
-// What tier 1 alone makes of a ray (QuickPlaneT, plane.cpp): a miss, a hit, or unsure, for
+// What tier 1 alone makes of a ray (QuickPlaneT): a miss, a hit, or unsure, for
 // RobustPlaneHit to decide from the start.
 enum QuickAnswer { PLANE_MISS, PLANE_HIT, PLANE_UNSURE };
 
@@ -165,7 +268,7 @@ void ShearRay(const Ray *ray, RayShear *shear);
 
 // v with its axes renamed (kx, ky, kz) = (kz + 1, kz + 2, kz) mod 3. A rotation keeps the
 // triangles' winding, whatever kz is. kz is a compile-time constant, so every component below is
-// a plain field, not an indexed load: the triangle loop is compiled once per axis (HitShapes).
+// a plain field, not an indexed load (the fast kernel is compiled once per axis).
 template <int kz> inline vec3 RenameAxes(vec3 v) {
     if constexpr (kz == 0)
         return {v.y, v.z, v.x};
@@ -186,12 +289,6 @@ template <int kz> inline void ShearRayAxes(const Ray *ray, RayShear *shear) {
 bool IntersectWatertight(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray,
                          const RayShear *shear, real tMin, real tMax, RayHit *hit);
 
-// The triangle half of the shape loop (HitShapes) for the watertight method: the nearest hit
-// (the first, with anyHit) among triangles[0..n) but `skip`, with t in (tMin, tMax). Compiled once
-// per main axis, with the first step of the test inlined: most triangles end there.
-bool HitWatertightTriangles(const Triangle *triangles, int n, int skip, const Ray *ray,
-                            const RayShear *shear, real tMin, real tMax, bool anyHit, RayHit *hit);
-
 // ---- geometry.cpp and path.cpp: rays that leave a surface --------------------------------------
 
 // Self-intersection ("shadow acne") is prevented by one method for every ray that leaves a
@@ -200,7 +297,7 @@ bool HitWatertightTriangles(const Triangle *triangles, int n, int skip, const Ra
 // it on the side the new ray goes to, whatever the scene's scale. Rounding the moved point
 // outward (NextAfter) keeps the addition itself from undoing the move. The new ray then uses
 // tMin = 0, and the intersectors' own "t above its rounding error" tests do the rest. (Inline:
-// every ray that leaves a surface starts here; out of line, a path vertex waited for its call.)
+// every ray that leaves a surface starts here.)
 inline vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir) {
     real distance = Dot(Abs(hit->normal), hit->pointError);
     vec3 offset = distance * hit->normal;
@@ -224,10 +321,10 @@ inline vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir) {
 // holds while the normal is known to 2^-10: normalKnown). A ray going away from the plane on
 // that side can then meet it only at t <= 0, which RobustPlaneHit's sound bound refuses; passing
 // over the triangle, as --self-hit skip does, changes no answer wherever that bound holds (a
-// layout test checks closed meshes of triangles around spheres of radius 1e-305 to 1e300) and saves
-// that refusal, about 200 instructions. Going away is certain where the rounded n.d, on that side,
-// exceeds awayShare of sum |d_i| (SetUpTriangle says why). A sphere is never passed over: a ray
-// leaving it inward meets it again. (Inline: every ray that leaves a surface asks.)
+// layout test checks closed meshes of triangles around spheres of radius 1e-305 to 1e300) and
+// saves the search that refusal: the whole plane test. Going away is certain where the rounded
+// n.d, on that side, exceeds awayShare of sum |d_i| (SetUpTriangle says why). A sphere is never
+// passed over: a ray leaving it inward meets it again.
 inline bool PassesOver(const RayHit *hit, vec3 side, vec3 dir) {
     if (!(hit->shape == SHAPE_TRIANGLE && hit->awayShare > 0))
         return false;
@@ -237,6 +334,6 @@ inline bool PassesOver(const RayHit *hit, vec3 side, vec3 dir) {
 
 // Where such a ray starts its search: from t = 0, passing over the triangle it leaves where
 // PassesOver, else over nothing.
-inline RayStart StartLeaving(const RayHit *hit, vec3 side, vec3 dir) {
-    return PassesOver(hit, side, dir) ? RayStart{0, SHAPE_TRIANGLE, hit->index} : kFromTheEye;
+inline SelfHit StartLeaving(const RayHit *hit, vec3 side, vec3 dir) {
+    return PassesOver(hit, side, dir) ? SelfHit{0, SHAPE_TRIANGLE, hit->index} : kNoSelfHit;
 }

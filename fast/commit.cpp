@@ -1,4 +1,4 @@
-// commit.cpp -- the committed scene: the shapes in the layout the fast loop reads.
+// fast/commit.cpp -- the committed scene: the shapes in the layout the fast search reads.
 //
 // A scene is written, read and explained as the handouts' structs. Once per render, CommitScene
 // (after Embree's rtcCommitScene) copies the triangles, and the spheres, into blocks of kLanes,
@@ -10,12 +10,12 @@
 // subtrees are tasks that a second thread shares; each depends only on its triangles, so the tree
 // is the same whoever builds what. Nothing here changes an answer: the kernel returns the plain
 // loop's bits.
-#include "ray.h"
-#include "robust.h"
+#include "fast.h"
 
 #include <algorithm>
 #include <atomic>
 #include <condition_variable>
+#include <cstdio>
 #include <deque>
 #include <memory>
 #include <mutex>
@@ -78,8 +78,8 @@ struct Task {
 // which part, and in whatever order.
 struct Builder {
     BuildItem *items;
-    int *order; // a leaf's triangles' places, sorted, where its items are (FillLeaves reads them)
-    bool wide;  // binning with AVX2 (KernelCanBeWide)
+    int *order;   // a leaf's triangles' places, sorted, where its items are (FillLeaves reads them)
+    bool vectors; // binning with AVX2 (KernelHasVectors)
     std::mutex lock;
     std::condition_variable wake;
     std::vector<Task> tasks;                   // by id, in the order they were made
@@ -112,9 +112,9 @@ static int BuildNode(Builder *b, std::vector<BinaryNode> *part, int begin, int e
     BinaryNode node = {{}, 0, 0, begin, 0, 0};
     BoundsBox(&bounds->box, &node.box, &node.area);
     NodeBounds side[2];
-    int middle = end - begin <= kLanes
-                     ? -1
-                     : SplitNode(b->items, begin, end, bounds, depth < kMaxSahDepth, b->wide, side);
+    int middle = end - begin <= kLanes ? -1
+                                       : SplitNode(b->items, begin, end, bounds,
+                                                   depth < kMaxSahDepth, b->vectors, side);
     if (middle < 0) {
         node.count = end - begin;
         for (int i = begin; i < end; i++)
@@ -191,12 +191,12 @@ static void NumberLeaves(Builder *b, NodeRef r, int *next, std::vector<NodeRef> 
 // The children of a four-wide node over binary node `top` (Embree's BVH4, made from a binary
 // tree as Wald, Benthin & Boulos 2008 do): its two children, then the inner child of largest
 // area opened, until there are four or only leaves. Returns how many.
-static int FourKids(Builder *b, NodeRef top, NodeRef kids[kWidth]) {
+static int FourKids(Builder *b, NodeRef top, NodeRef kids[kChildren]) {
     int count = 1;
     kids[0] = top;
     if (At(b, top)->count == 0)
         kids[0] = {top.task, top.place + 1}, kids[1] = Second(At(b, top), top), count = 2;
-    while (count < kWidth) {
+    while (count < kChildren) {
         int open = -1;
         for (int k = 0; k < count; k++)
             if (At(b, kids[k])->count == 0 &&
@@ -216,12 +216,12 @@ static int FourKids(Builder *b, NodeRef top, NodeRef kids[kWidth]) {
 // `*next` on: the order NumberLeaves numbers them in, as each node's kids keep the binary
 // tree's order (FourKids), so Collapse needs no numbers from it. Returns the top node's place.
 static int Collapse(Builder *b, NodeRef top, int *next, SceneLayout *layout) {
-    NodeRef kids[kWidth];
+    NodeRef kids[kChildren];
     int count = FourKids(b, top, kids);
     int place = (int)layout->nodes.size();
     layout->nodes.emplace_back();
     BvhNode node = {};
-    for (int k = 0; k < kWidth; k++) {
+    for (int k = 0; k < kChildren; k++) {
         node.blocks[k] = -1; // no child
         if (k >= count)
             continue;
@@ -347,11 +347,11 @@ static void NumberAndCollapse(Builder *b, const std::vector<Triangle> &triangles
 static void BuildTree(const std::vector<Triangle> &triangles, int most, SceneLayout *layout) {
     int n = (int)triangles.size();
     bool threads = most > 1 && n >= kThreadMin && std::thread::hardware_concurrency() > 1;
-    bool wide = KernelCanBeWide();
+    bool vectors = KernelHasVectors();
     Task root = {0, n, 0, {}};
     std::unique_ptr<int[]> order(new int[n]);
     Builder b;
-    b.items = nullptr, b.order = order.get(), b.wide = wide, b.next = 0;
+    b.items = nullptr, b.order = order.get(), b.vectors = vectors, b.next = 0;
     b.unfinished = 1; // the items, until the root's task is made
     // One thread makes the items (in the blocks' memory) and starts the tree while the other
     // writes the set-ups
@@ -359,7 +359,7 @@ static void BuildTree(const std::vector<Triangle> &triangles, int most, SceneLay
         threads,
         [&] {
             b.items = ItemsInBlocks(n, layout);
-            MakeBuildItems(triangles.data(), 0, n, wide, b.items, &root.bounds);
+            MakeBuildItems(triangles.data(), 0, n, vectors, b.items, &root.bounds);
             AddTask(&b, &root);
             FinishTask(&b);
             BuildTasks(&b);
@@ -391,23 +391,47 @@ static void SphereBlocks(const std::vector<Sphere> &spheres, SceneLayout *layout
     layout->sphereCount = spheres.size();
 }
 
-void CommitScene(Scene *scene, LayoutChoice choice, int threads) {
-    SceneLayout layout;
+void CommitScene(Scene *scene, LayoutChoice choice, int threads, SceneLayout *layout) {
+    layout->blocks.clear(), layout->nodes.clear(), layout->setUps.clear();
+    layout->sphereBlocks.clear();
+    if (choice == LAYOUT_PLAIN) {
+        scene->accelerator = nullptr;
+        return;
+    }
     const std::vector<Triangle> &triangles = scene->triangles;
     int n = (int)triangles.size();
     bool tree = choice == LAYOUT_BVH || (choice == LAYOUT_AUTO && (size_t)n >= kBvhMinTriangles);
     if (tree && n > 0) {
-        BuildTree(triangles, threads, &layout);
+        BuildTree(triangles, threads, layout);
     } else {
         std::vector<int> index(n);
         for (int i = 0; i < n; i++)
             index[i] = i;
-        AppendBlocks(triangles, index.data(), n, &layout);
-        SetUpAll(triangles, &layout);
+        AppendBlocks(triangles, index.data(), n, layout);
+        SetUpAll(triangles, layout);
     }
-    SphereBlocks(scene->spheres, &layout);
-    layout.triangleCount = triangles.size();
-    layout.committed = true;
-    layout.wide = KernelCanBeWide();
-    scene->layout = std::move(layout);
+    SphereBlocks(scene->spheres, layout);
+    layout->triangleCount = triangles.size();
+    layout->vectors = KernelHasVectors();
+    layout->scene = scene;
+    layout->accelerator = {layout, SearchLayout, SearchEyeRays};
+    scene->accelerator = &layout->accelerator;
+}
+
+std::string DescribeLayout(const Scene *scene, const SceneLayout *layout, double buildSeconds) {
+    char text[200];
+    if (scene->triangles.empty()) // (--layout bvh too: there is nothing to build a tree over)
+        return "triangles: none";
+    if (scene->accelerator != &layout->accelerator) {
+        snprintf(text, sizeof text, "triangles: %zu, tested one by one (the plain loop)",
+                 scene->triangles.size());
+        return text;
+    }
+    char tree[64] = "one list";
+    if (!layout->nodes.empty())
+        snprintf(tree, sizeof tree, "a BVH of %zu nodes of %d", layout->nodes.size(), kChildren);
+    snprintf(text, sizeof text, "triangles: %zu in %zu blocks of %d, %s (built in %.3g ms), %s",
+             scene->triangles.size(), layout->blocks.size(), kLanes, tree, buildSeconds * 1e3,
+             layout->vectors ? "blocks tested in AVX2 vectors" : "blocks tested lane by lane");
+    return text;
 }

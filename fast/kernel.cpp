@@ -1,0 +1,264 @@
+// fast/kernel.cpp -- the accelerator that main installs: the two functions the core's seam calls
+// (Accelerator, ray.h), and the kernel behind them: blocks of kLanes triangles, the BVH walk,
+// blocks of spheres, packets of eye rays.
+//
+// A search answers as the plain loop of geometry.cpp does, bit for bit: the spheres in scene
+// order, then the triangles, each hit shrinking the interval, a tie kept by the earlier shape.
+// Speed machinery, in two steps beyond the plain loop:
+//   1. The watertight test's first step (shear the corners, compute the edge functions, reject
+//      a triangle whose edges disagree; watertight.cpp, EdgesDisagree) runs on a whole block at
+//      once, with GCC/Clang vector extensions: `Lanes` holds kLanes numbers, and every line
+//      of kernel_blocks.h is the scalar line with `Lanes` for `real`, the same operations in the
+//      same order, so each lane rounds exactly as the scalar code does. Only the triangles that
+//      survive go on to the rest of the reference test: where their three edge functions have a
+//      certain sign (none 0 or NaN), what IntersectSheared (watertight.cpp) does next is to call
+//      RobustPlaneHit, so the kernel calls it with the same arguments; the others get the whole
+//      reference function (IntersectWatertight), which decides their signs exactly.
+//   2. With a BVH (commit.cpp), a ray visits only the nodes whose boxes its line passes
+//      (SlabInterval, nearer child first) and skips those wholly beyond its nearest hit so far.
+//      Every hit lies inside its triangle's window (plane.cpp), and a node's window holds those
+//      of the triangles below it, so no box is skipped that holds a hit. Hits at equal t go to
+//      the lower place in the scene, as in the list.
+// One binary serves every x86-64 machine: the loop is compiled twice, for AVX2 and for the
+// baseline (SSE2), and each call takes the one this processor can run (what target_clones does;
+// written out, because clang 14's target_clones cannot be called from another file).
+// The block test is in kernel_blocks.h, the walk in kernel_walk.h; this file puts them together
+// for one ray and dispatches. The spheres' blocks (kernel_spheres.h) get the same treatment: the
+// first step of the stable sphere test on kLanes spheres at once, the reference test for the rest.
+#include "kernel_packet.h"
+#include "kernel_walk.h"
+
+// 1 / d on each axis, as MakeSlabRay divides (each lane rounds as the scalar division does),
+// for OutOfReach: one vector division, made every search, and built in registers (three numbers
+// stored one by one and read back as one vector would wait for the stores).
+static RT_INLINE void Inverses(vec3 d, real inverse[3]) {
+    Lanes one, lanes;
+    Fill(&one, 1);
+    lanes = one;
+    lanes[0] = d.x, lanes[1] = d.y, lanes[2] = d.z;
+    Lanes quotient = one / lanes;
+    inverse[0] = quotient[0], inverse[1] = quotient[1], inverse[2] = quotient[2];
+}
+
+template <int kz, bool kVectors>
+static RT_INLINE bool HitLayout(const SceneLayout *layout, Search *s, RayHit *hit) {
+    if (layout->nodes.empty())
+        return TestBlocks<kz, kVectors>(layout->blocks.data(), 0, (int)layout->blocks.size(), s,
+                                        hit);
+    return WalkTree<kz, kVectors>(layout, s, hit);
+}
+
+// The search for one ray whose main axis is kz: the ray sheared here, so that its numbers are
+// spread over the lanes from registers (sheared by the caller, out of line, they would be read
+// back as one vector load of numbers just stored, which waits for the stores).
+template <int kz, bool kVectors>
+static RT_INLINE bool HitSheared(const Scene *scene, const SceneLayout *layout, int skip,
+                                 const Ray *ray, real tMin, real tMax, bool anyHit, RayHit *hit) {
+    RayShear shear;
+    ShearRayAxes<kz>(ray, &shear);
+    Search s = {scene->triangles.data(),
+                layout->setUps.data(),
+                ray,
+                &shear,
+                {},
+                skip,
+                tMin,
+                tMax,
+                -1,
+                anyHit,
+                {},
+                OriginPad(ray)};
+    Inverses(ray->dir, s.inverse);
+    Splat(&s.lanes.ox, shear.origin.x), Splat(&s.lanes.oy, shear.origin.y);
+    Splat(&s.lanes.oz, shear.origin.z), Splat(&s.lanes.sx, shear.sx);
+    Splat(&s.lanes.sy, shear.sy);
+    return HitLayout<kz, kVectors>(layout, &s, hit);
+}
+
+// The whole search for one ray, compiled into each of the two copies below.
+template <bool kVectors>
+static RT_INLINE bool HitAll(const Scene *scene, const SceneLayout *layout, int skip,
+                             const Ray *ray, real tMin, real tMax, bool anyHit, RayHit *hit) {
+    int kz = DominantAxis(ray->dir);
+    if (kz == 0)
+        return HitSheared<0, kVectors>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+    if (kz == 1)
+        return HitSheared<1, kVectors>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+    return HitSheared<2, kVectors>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+}
+
+static bool HitBaseline(const Scene *scene, const SceneLayout *layout, int skip, const Ray *ray,
+                        real tMin, real tMax, bool anyHit, RayHit *hit) {
+    return HitAll<false>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+}
+
+#if RT_DISPATCH
+RT_AVX2 static bool HitAvx2(const Scene *scene, const SceneLayout *layout, int skip, const Ray *ray,
+                            real tMin, real tMax, bool anyHit, RayHit *hit) {
+    return HitAll<true>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+}
+#endif
+
+bool HitCommittedTriangles(const Scene *scene, const SceneLayout *layout, int skip, const Ray *ray,
+                           real tMin, real tMax, bool anyHit, RayHit *hit) {
+#if RT_DISPATCH
+    if (layout->vectors)
+        return HitAvx2(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+#endif
+    return HitBaseline(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+}
+
+// The sphere blocks (kernel_spheres.h), one chunk or many, each in both copies. Out of line, so
+// that the search of one chunk, the common one, needs few registers saved.
+static RT_NOINLINE bool OneChunkBaseline(const Scene *scene, const SceneLayout *layout, int skip,
+                                         const Ray *ray, real tMin, real *tMax, bool anyHit,
+                                         RayHit *hit) {
+    return TestOneChunk<false>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+}
+
+static RT_NOINLINE bool ChunksBaseline(const Scene *scene, const SceneLayout *layout, int skip,
+                                       const Ray *ray, real tMin, real *tMax, bool anyHit,
+                                       RayHit *hit) {
+    return TestChunks<false>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+}
+
+#if RT_DISPATCH
+RT_AVX2 static RT_NOINLINE bool OneChunkAvx2(const Scene *scene, const SceneLayout *layout,
+                                             int skip, const Ray *ray, real tMin, real *tMax,
+                                             bool anyHit, RayHit *hit) {
+    return TestOneChunk<true>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+}
+
+RT_AVX2 static RT_NOINLINE bool ChunksAvx2(const Scene *scene, const SceneLayout *layout, int skip,
+                                           const Ray *ray, real tMin, real *tMax, bool anyHit,
+                                           RayHit *hit) {
+    return TestChunks<true>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+}
+#endif
+
+bool HitCommittedSpheres(const Scene *scene, const SceneLayout *layout, int skip, const Ray *ray,
+                         real tMin, real *tMax, bool anyHit, RayHit *hit) {
+    if (layout->sphereCount == 0) // (a mesh scene: no call, no lanes made for nothing)
+        return false;
+    bool one = layout->sphereCount <= (size_t)(kChunkBlocks * kLanes);
+#if RT_DISPATCH
+    if (layout->vectors)
+        return one ? OneChunkAvx2(scene, layout, skip, ray, tMin, tMax, anyHit, hit)
+                   : ChunksAvx2(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+#endif
+    return one ? OneChunkBaseline(scene, layout, skip, ray, tMin, tMax, anyHit, hit)
+               : ChunksBaseline(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+}
+
+// Packets of rays from the eye (kernel_packet.h), in the AVX2 copy only: lane by lane they would
+// repeat the one-ray loop's work with more bookkeeping.
+#if RT_DISPATCH
+RT_AVX2 static void PacketAvx2(const Scene *scene, const SceneLayout *layout, PacketSearch *p) {
+    int kz = p->packet->kz;
+    if (kz == 0)
+        SearchPacket<0>(scene, layout, p);
+    else if (kz == 1)
+        SearchPacket<1>(scene, layout, p);
+    else
+        SearchPacket<2>(scene, layout, p);
+}
+#endif
+
+bool HitCommittedPacket(const Scene *scene, const SceneLayout *layout, const RayPacket *packet,
+                        RayHit *hits, bool *found) {
+#if RT_DISPATCH
+    int count = packet->count;
+    if (!layout->vectors || !layout->nodes.empty() || count < 1 || count > kLanes ||
+        packet->kz < 0 || packet->kz > 2)
+        return false;
+    PacketSearch p;
+    p.packet = packet, p.active = (1u << count) - 1, p.hits = hits;
+    PacketAvx2(scene, layout, &p);
+    for (int r = 0; r < count; r++)
+        found[r] = p.found[r];
+    return true;
+#else
+    (void)scene, (void)layout, (void)packet, (void)hits, (void)found;
+    return false;
+#endif
+}
+
+bool KernelHasVectors() {
+#if RT_DISPATCH
+    return __builtin_cpu_supports("avx2");
+#else
+    return false;
+#endif
+}
+
+// ---- the accelerator's two functions (Accelerator, ray.h) ----------------------------------
+
+// Whether the layout answers for this search: made from this very scene (not a copy), which
+// still holds as many shapes as it did, and the robust sphere and triangle tests, the only ones
+// the kernel has. (The handouts' methods are the plain loop, as written.)
+static const SceneLayout *Answering(const Accelerator *self, const Scene *scene,
+                                    const Methods *methods) {
+    const SceneLayout *layout = (const SceneLayout *)self->layout;
+    bool same = layout->scene == scene && layout->triangleCount == scene->triangles.size() &&
+                layout->sphereCount == scene->spheres.size();
+    bool robust = methods->sphere == SPHERE_STABLE && methods->triangle == TRIANGLE_WATERTIGHT;
+    return same && robust ? layout : nullptr;
+}
+
+// SearchList's steps (geometry.cpp): the ray rescaled where it must be (robust/), the spheres,
+// then the triangles, t scaled back; the blocks and the BVH in place of the list.
+bool SearchLayout(const Accelerator *self, const Scene *scene, Methods methods, const Ray *given,
+                  const SelfHit *from, real tMax, bool anyHit, RayHit *hit) {
+    const SceneLayout *layout = Answering(self, scene, &methods);
+    if (!layout)
+        return SearchList(scene, methods, given, from, tMax, anyHit, hit);
+    ScaledRay s;
+    if (!ScaleRay(given, from->tMin, tMax, &s))
+        return false;
+    const Ray *ray = SearchedRay(&s, given);
+    int skipSphere = from->shape == SHAPE_SPHERE ? from->index : -1;
+    int skipTriangle = from->shape == SHAPE_TRIANGLE ? from->index : -1;
+    bool found = HitCommittedSpheres(scene, layout, skipSphere, ray, s.tMin, &s.tMax, anyHit, hit);
+    if (!(found && anyHit))
+        found =
+            HitCommittedTriangles(scene, layout, skipTriangle, ray, s.tMin, s.tMax, anyHit, hit) ||
+            found;
+    return found && ScaleBack(&s, from->tMin, tMax, hit);
+}
+
+// Whether a packet costs less than its rays one by one. A packet tests each shape once for all
+// its rays, where one ray tests a block of kLanes shapes at once, and a packet's test of one
+// shape costs a little more than one ray's test of a block; what the packet saves is each ray's
+// own set-up and the blocks' empty lanes, which matter in small scenes only (docs/speed.md
+// measures where it stops paying). A packet of one ray is one ray's search with more bookkeeping.
+const size_t kPacketShapes = 64;
+static bool PacketPays(const SceneLayout *layout, int count) {
+    return count >= 2 && layout->vectors && layout->nodes.empty() &&
+           layout->triangleCount + layout->sphereCount <= kPacketShapes;
+}
+
+// rays[0..count) as one packet, if the kernel can take them (each searched for as it is, with
+// one renaming of the axes for all): found[] and hits[] written. False, nothing written, if not.
+static bool HitPacket(const Scene *scene, const SceneLayout *layout, const Ray *rays, int count,
+                      RayHit *hits, bool *found) {
+    RayPacket packet = {rays, count, DominantAxis(rays[0].dir)};
+    for (int r = 0; r < count; r++) {
+        vec3 d = rays[r].dir;
+        if (!SearchedAsIs(d) || DominantAxis(d) != packet.kz) // (ScaleRay would rescale it)
+            return false;
+    }
+    return HitCommittedPacket(scene, layout, &packet, hits, found);
+}
+
+void SearchEyeRays(const Accelerator *self, const Scene *scene, Methods methods, const Ray *rays,
+                   int count, RayHit *hits, bool *found, bool *answered) {
+    const SceneLayout *layout = Answering(self, scene, &methods);
+    for (int first = 0; layout && first < count; first += kLanes) { // a packet is kLanes rays
+        int n = count - first < kLanes ? count - first : kLanes;
+        if (!PacketPays(layout, n) ||
+            !HitPacket(scene, layout, rays + first, n, hits + first, found + first))
+            continue;
+        for (int k = first; k < first + n; k++)
+            answered[k] = true;
+    }
+}
