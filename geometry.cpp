@@ -116,10 +116,11 @@ static bool SolveSphere(vec3 f, vec3 d, real r, real tMin, real tMax, real *tHit
     return true;
 }
 
-// A quick first step, where most spheres a ray meets end: the line passes the centre farther than
-// the radius (SphereDiscriminant < 0), as SolveSphere would find. Trusted only when A r^2 is a
-// normal number: a square that overflowed (inf - inf is NaN, not < 0) or fell below the normal
-// range goes on to the rescaled test.
+// The discriminant's test, taken first, where most spheres a ray meets end: the line passes the
+// centre farther than the radius (SphereDiscriminant < 0). Trusted only when A r^2 is a normal
+// number: a square that overflowed (inf - inf is NaN, not < 0) or fell below the normal range
+// goes on to the rescaled test. (fast/ takes this step for several spheres at once, with the same
+// rounding, and sends the others on to IntersectSphere.)
 static inline bool LineMissesSphere(const Sphere *s, const Ray *ray) {
     vec3 d = ray->dir;
     real a = Dot(d, d), r2 = s->radius * s->radius;
@@ -137,7 +138,8 @@ static inline bool LineMissesSphere(const Sphere *s, const Ray *ray) {
 // so C has the right sign and the root it would re-hit is negative; a probe that starts a hair
 // outside the sphere still sees it (a hit at t = 3e-11).
 bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
-    if (!(s->radius > 0) || !std::isfinite(s->radius))
+    // No hit if the line passes farther from the centre than the radius: most spheres end here
+    if (LineMissesSphere(s, ray) || !(s->radius > 0) || !std::isfinite(s->radius))
         return false;
     // robust: lengths rescaled by powers of two where a square could leave the range of numbers
     int kd = 0, kr = 0;
@@ -262,14 +264,12 @@ bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real
 
 // ---- the nearest hit over the list of shapes ----------------------------------------------
 
-// One sphere, and one triangle, by the chosen method. (The stable sphere's test first takes the
-// step where most spheres a ray meets end, LineMissesSphere: fast/ takes that step for several
-// spheres at once, and sends the others on to IntersectSphere, as here.)
+// One sphere, and one triangle, by the chosen method.
 static bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, real tMin, real tMax,
                       RayHit *hit) {
     if (methods.sphere == SPHERE_TEXTBOOK)
         return IntersectSphereTextbook(s, ray, tMin, tMax, hit);
-    return !LineMissesSphere(s, ray) && IntersectSphere(s, ray, tMin, tMax, hit);
+    return IntersectSphere(s, ray, tMin, tMax, hit);
 }
 
 static bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray, real tMin, real tMax,

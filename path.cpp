@@ -108,6 +108,8 @@ static color JournalShade(Path *path, const Ray *ray, bool found, const RayHit *
         RayKind kind = MirrorOrGlass(ray, hit, m, pick, &path->settings->methods, &next, &leaving);
         return m->emit + JournalColor(path, &next, &leaving, kind, number + 1);
     }
+    if (!(MaxComponent(m->diffuse) > 0)) // black: what a ray would bring back counts for 0
+        return m->emit;
     vec3 toward =
         hit->normal + RandomUnitVector(DiskPoint(&path->sample, number - 1, SCATTER_DISK));
     if (!(Dot(toward, hit->normal) > 0)) // the random vector all but -normal: no way out
@@ -428,57 +430,4 @@ color TraceFoundPath(const Scene *scene, const RenderSettings *settings, const R
     if (settings->path.estimator == ESTIMATOR_JOURNAL)
         return JournalRay(&path, primary, RAY_PRIMARY, found, hit, 1);
     return FullPath(&path, found, hit);
-}
-
-// ---- emitters: the shapes whose material has `emit` ------------------------------------------
-
-// A triangle's (b - a) x (c - a) with both edges first multiplied by 2^*k, the power of two
-// that brings the larger edge's largest component into [1, 2): unscaled, the product of two
-// edges of 1e200 (or 1e-200) would overflow (or underflow); scaled, its direction is exact and
-// its length is 2^2k times the true one.
-static vec3 ScaledEdgeCross(const Triangle *t, int *k) {
-    vec3 e1 = t->b - t->a, e2 = t->c - t->a;
-    *k = UnitExponent(MaxComponent(e1) > MaxComponent(e2) ? e1 : e2);
-    return Cross(ScaleByPowerOfTwo(e1, *k), ScaleByPowerOfTwo(e2, *k));
-}
-
-real EmitterSqrtArea(const Scene *scene, const Emitter *e) {
-    if (e->shape == SHAPE_SPHERE) // area 4 pi r^2
-        return std::sqrt(4 * kPi) * scene->spheres[e->index].radius;
-    int k; // area |e1 x e2| / 2, from the scaled cross product: 2^-2k |n| / 2
-    vec3 n = ScaledEdgeCross(&scene->triangles[e->index], &k);
-    return ScaleByPowerOfTwo(std::sqrt(real(0.5) * SafeLength(n)), -k);
-}
-
-// An emitting shape, with what every light sample reads: its area's square root, (a triangle) its
-// unit normal, and its radiance, once per render.
-static Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index) {
-    Emitter e = {shape, index, 0, {0, 0, 0}, {0, 0, 0}};
-    e.sqrtArea = EmitterSqrtArea(scene, &e);
-    if (shape == SHAPE_SPHERE) {
-        e.emit = scene->materials[scene->spheres[index].material].emit;
-        return e;
-    }
-    const Triangle *t = &scene->triangles[index];
-    int k; // (the scale is not needed: only the direction)
-    e.normal = SafeNormalize(ScaledEdgeCross(t, &k));
-    e.emit = scene->materials[t->material].emit;
-    return e;
-}
-
-void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters) {
-    auto emits = [scene](int material) { return Emits(&scene->materials[material]); };
-    // (A shape without area, or of an area beyond the range of numbers, can be neither hit nor
-    // sampled: it is left out, so no density is ever divided by 0 or infinity.)
-    auto add = [scene, emitters](ShapeKind shape, int index) {
-        Emitter e = MakeEmitter(scene, shape, index);
-        if (e.sqrtArea > 0 && std::isfinite(e.sqrtArea))
-            emitters->push_back(e);
-    };
-    for (int i = 0; i < (int)scene->spheres.size(); i++)
-        if (emits(scene->spheres[i].material))
-            add(SHAPE_SPHERE, i);
-    for (int i = 0; i < (int)scene->triangles.size(); i++)
-        if (emits(scene->triangles[i].material))
-            add(SHAPE_TRIANGLE, i);
 }

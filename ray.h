@@ -4,6 +4,19 @@
 // Triangle, Material, Light, Scene); the choice of numerical methods; then the functions, grouped
 // by the file that defines them: the cameras, where rays meet shapes, the built-in scenes. How a
 // render lights what the rays hit is in render.h. Plain data, free functions, no globals.
+//
+// The handouts' steps, in the order a pixel takes them, are these functions:
+//   GetRay                         the assignment's camera                   camera.cpp
+//   FindNearestHit, AnyHit         the nearest hit over the list of shapes;  geometry.cpp
+//                                  a shadow ray's any hit
+//   IntersectSphere,               a ray and one shape (the handouts' own    geometry.cpp,
+//   IntersectTriangle              forms beside them: *Textbook, *Cramer,    robust/
+//                                  *Plane)
+//   TraceRay                       the chain of rays: lighting, shadows,     shade.cpp
+//                                  mirrors, glass, at most `depth` rays
+//   Reflect, Refract               the mirror direction; Snell's law         shade.cpp
+//   TracePath                      light that bounces (the journal)          path.cpp
+// The rest is rt's own: settings, sampling, the robust steps beyond the handouts, and the seam.
 // Beside this core, by role: robust/ (the robust triangle test and the rescaling of rays, called
 // at marked lines), fast/ (speed machinery, which main installs behind one seam: Accelerator,
 // below) and app/ (the command line, files, probes). The core includes none of fast/ and app/.
@@ -278,6 +291,48 @@ bool ShadowRay(const RayHit *hit, vec3 lightPosition, const Methods *methods, Ra
                SelfHit *from);
 
 // ---- the seam: speed machinery that main may install (fast/) --------------------------------
+
+// Beyond the handouts, a step every search takes first (SearchList, and fast/ the same way): a
+// ray whose direction is too large or too small to square is searched along a rescaled direction.
+// Whether a ray's direction is searched for as it is: inside kDirectionWindow (numbers.h), which
+// ScaleRay leaves alone.
+inline bool SearchedAsIs(vec3 dir) { return WithinWindow(MaxComponent(dir), kDirectionWindow); }
+
+// A ray whose direction lies outside kDirectionWindow, rescaled to a largest component in [1, 2),
+// with its interval, so that no shape test squares or divides a direction of 1e-200 or 1e200 out
+// of range. Scaling d by 2^k scales every t by 2^-k exactly; ScaleBack undoes it. k = 0: the
+// direction is inside the window, and the ray is searched as given (`ray` is not set).
+struct ScaledRay {
+    Ray ray;
+    int k;
+    real tMin, tMax;
+};
+
+// The rescaling itself, for a direction outside the window (ScaleRay): robust/rescale.cpp.
+bool RescaleRay(const Ray *ray, ScaledRay *s);
+
+// The ray rescaled where its direction lies outside the window, and (tMin, tMax) with it, cut so
+// that every t' in it comes back inside (tMin, tMax). False for a direction that is zero or not
+// finite: such a ray has no answer. (Inline: every search starts here, and almost every
+// direction is inside the window.)
+inline bool ScaleRay(const Ray *ray, real tMin, real tMax, ScaledRay *s) {
+    s->k = 0, s->tMin = tMin, s->tMax = tMax;
+    return SearchedAsIs(ray->dir) || RescaleRay(ray, s);
+}
+
+// The ray a search follows: the rescaled one, or the one given.
+inline const Ray *SearchedRay(const ScaledRay *s, const Ray *given) {
+    return s->k == 0 ? given : &s->ray;
+}
+
+// The hit's t in units of the original direction; false if that leaves (tMin, tMax) by
+// overflowing or underflowing.
+inline bool ScaleBack(const ScaledRay *s, real tMin, real tMax, RayHit *hit) {
+    if (s->k == 0)
+        return true;
+    hit->t = ScaleByPowerOfTwo(hit->t, s->k);
+    return hit->t > tMin && hit->t < tMax;
+}
 
 // The plain loop over the list of shapes, as the handouts write it: every search above, where no
 // accelerator is installed. (anyHit: stop at the first hit, as AnyHit does.)

@@ -1,44 +1,15 @@
-// shade.cpp -- what colour a ray brings back: lighting and the chain of rays, nothing else.
+// shade.cpp -- what colour a ray brings back: lighting and the chain of rays.
 //
 // The assignment handout's diffuse shading with an ambient floor, hard shadows and mirrors; the
 // second handout's Phong lighting; the journal's refraction by Snell's law with Fresnel
 // weighting. At most `depth` rays in a chain (then black), the background on a miss. Every ray
-// asks the scene one of two questions of geometry.cpp: FindNearestHitFrom or AnyHitFrom.
+// asks the scene one of two questions of geometry.cpp: FindNearestHitFrom or AnyHitFrom. Last,
+// what a render decides once, so that it casts no ray it cannot use: the effects a scene calls
+// for, and the shapes that emit (path tracing's lamps).
 #include "ray.h"
 #include "render.h"
 
 #include <algorithm>
-
-static bool MaterialIsUsed(const Scene *scene, int material) {
-    for (const Sphere &s : scene->spheres)
-        if (s.material == material)
-            return true;
-    for (const Triangle &t : scene->triangles)
-        if (t.material == material)
-            return true;
-    return false;
-}
-
-void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects) {
-    bool shapes = !scene->spheres.empty() || !scene->triangles.empty();
-    bool lights = !scene->lights.empty(), path = scene->shading == SHADING_PATH;
-    *effects =
-        Effects{lights && shapes, false, false, false, settings->samplesPerPixel > 1, false, {}};
-    bool chain = settings->depth > 1; // room for a ray after the primary one
-    for (int k = 0; k < (int)scene->materials.size(); k++) {
-        const Material *m = &scene->materials[k];
-        if (!MaterialIsUsed(scene, k))
-            continue;
-        effects->reflection = effects->reflection || (chain && (m->mirror > 0 || m->ior > 0));
-        effects->refraction = effects->refraction || (chain && m->ior > 0);
-        effects->specular =
-            effects->specular || (scene->shading == SHADING_PHONG && lights && m->specular > 0);
-        bool diffuse = m->mirror < 1 && !(m->ior > 0) && MaxComponent(m->diffuse) > 0;
-        effects->indirect = effects->indirect || (path && chain && diffuse);
-    }
-    if (path)
-        FindEmitters(scene, &effects->emitters);
-}
 
 // Adds one shape (or 0: none) to the hash of the shapes a pixel sample's rays met, in order
 // (SplitMix64's finaliser, as the jitter's hash).
@@ -300,4 +271,88 @@ color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind,
 color TraceFoundEyeRay(const Scene *scene, const RenderSettings *settings, const Ray *ray,
                        bool found, const RayHit *hit, TraceLog *log) {
     return ShadeFound(scene, settings, RAY_PRIMARY, ray, RayChain{1, 1}, found, hit, log);
+}
+
+// ---- what a scene calls for ----------------------------------------------------------------
+
+static bool MaterialIsUsed(const Scene *scene, int material) {
+    for (const Sphere &s : scene->spheres)
+        if (s.material == material)
+            return true;
+    for (const Triangle &t : scene->triangles)
+        if (t.material == material)
+            return true;
+    return false;
+}
+
+// A triangle's (b - a) x (c - a) with both edges first multiplied by 2^*k, the power of two
+// that brings the larger edge's largest component into [1, 2): unscaled, the product of two
+// edges of 1e200 (or 1e-200) would overflow (or underflow); scaled, its direction is exact and
+// its length is 2^2k times the true one.
+static vec3 ScaledEdgeCross(const Triangle *t, int *k) {
+    vec3 e1 = t->b - t->a, e2 = t->c - t->a;
+    *k = UnitExponent(MaxComponent(e1) > MaxComponent(e2) ? e1 : e2);
+    return Cross(ScaleByPowerOfTwo(e1, *k), ScaleByPowerOfTwo(e2, *k));
+}
+
+real EmitterSqrtArea(const Scene *scene, const Emitter *e) {
+    if (e->shape == SHAPE_SPHERE) // area 4 pi r^2
+        return std::sqrt(4 * kPi) * scene->spheres[e->index].radius;
+    int k; // area |e1 x e2| / 2, from the scaled cross product: 2^-2k |n| / 2
+    vec3 n = ScaledEdgeCross(&scene->triangles[e->index], &k);
+    return ScaleByPowerOfTwo(std::sqrt(real(0.5) * SafeLength(n)), -k);
+}
+
+// An emitting shape, with what every light sample reads: its area's square root, (a triangle) its
+// unit normal, and its radiance, once per render.
+static Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index) {
+    Emitter e = {shape, index, 0, {0, 0, 0}, {0, 0, 0}};
+    e.sqrtArea = EmitterSqrtArea(scene, &e);
+    if (shape == SHAPE_SPHERE) {
+        e.emit = scene->materials[scene->spheres[index].material].emit;
+        return e;
+    }
+    const Triangle *t = &scene->triangles[index];
+    int k; // (the scale is not needed: only the direction)
+    e.normal = SafeNormalize(ScaledEdgeCross(t, &k));
+    e.emit = scene->materials[t->material].emit;
+    return e;
+}
+
+void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters) {
+    auto emits = [scene](int material) { return Emits(&scene->materials[material]); };
+    // (A shape without area, or of an area beyond the range of numbers, can be neither hit nor
+    // sampled: it is left out, so no density is ever divided by 0 or infinity.)
+    auto add = [scene, emitters](ShapeKind shape, int index) {
+        Emitter e = MakeEmitter(scene, shape, index);
+        if (e.sqrtArea > 0 && std::isfinite(e.sqrtArea))
+            emitters->push_back(e);
+    };
+    for (int i = 0; i < (int)scene->spheres.size(); i++)
+        if (emits(scene->spheres[i].material))
+            add(SHAPE_SPHERE, i);
+    for (int i = 0; i < (int)scene->triangles.size(); i++)
+        if (emits(scene->triangles[i].material))
+            add(SHAPE_TRIANGLE, i);
+}
+
+void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects) {
+    bool shapes = !scene->spheres.empty() || !scene->triangles.empty();
+    bool lights = !scene->lights.empty(), path = scene->shading == SHADING_PATH;
+    *effects =
+        Effects{lights && shapes, false, false, false, settings->samplesPerPixel > 1, false, {}};
+    bool chain = settings->depth > 1; // room for a ray after the primary one
+    for (int k = 0; k < (int)scene->materials.size(); k++) {
+        const Material *m = &scene->materials[k];
+        if (!MaterialIsUsed(scene, k))
+            continue;
+        effects->reflection = effects->reflection || (chain && (m->mirror > 0 || m->ior > 0));
+        effects->refraction = effects->refraction || (chain && m->ior > 0);
+        effects->specular =
+            effects->specular || (scene->shading == SHADING_PHONG && lights && m->specular > 0);
+        bool diffuse = m->mirror < 1 && !(m->ior > 0) && MaxComponent(m->diffuse) > 0;
+        effects->indirect = effects->indirect || (path && chain && diffuse);
+    }
+    if (path)
+        FindEmitters(scene, &effects->emitters);
 }

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cstring>
 #include <sys/stat.h>
+#include <thread>
+#include <unistd.h>
 
 void Complain(const std::string &message) {
     fprintf(stderr, "ray: %s\n", PrintableLine(message).c_str());
@@ -278,4 +280,36 @@ void WarnOfRender(const Options *opt, const Scene *scene, const RenderSettings *
                  {real(0.5) * settings->width, real(0.5) * settings->height}, &centre);
     for (const std::string &inside : InsideWarnings(scene, centre.origin))
         Complain("warning: " + inside);
+}
+
+// ---- the render's settings -------------------------------------------------------------
+
+// The progress line on standard error: percentage, rays per second (every kind), time left,
+// redrawn in place, and cleared at the end.
+static void ShowProgress(const RenderProgress *p) {
+    if (p->finished)
+        fprintf(stderr, "\r%*s\r", 45, "");
+    else
+        fprintf(stderr, "\r%5.1f%%  %7.2f Mrays/s  %5.1f s left ", 100 * p->done,
+                p->raysPerSecond / 1e6, p->secondsLeft);
+    fflush(stderr);
+}
+
+RenderSettings ChosenSettings(const Options *opt, const Scene *scene) {
+    RenderSettings settings;
+    settings.width = opt->width ? opt->width : scene->width;
+    settings.height = opt->height ? opt->height : scene->height;
+    settings.samplesPerPixel = opt->spp;
+    settings.sampling = (SampleMethod)opt->sampling;
+    settings.depth = opt->depth ? opt->depth : scene->depth;
+    unsigned hardware = std::thread::hardware_concurrency();
+    settings.threads = opt->threads ? opt->threads : (hardware ? (int)hardware : 1);
+    if (opt->view)
+        settings.threads = 1; // (RenderView draws on one thread)
+    settings.methods = ChosenMethods(opt);
+    settings.path = {(Estimator)opt->estimator, (ScatterMethod)opt->scatter,
+                     (LightMethod)opt->lights, opt->roulette == 1, opt->seed};
+    settings.progress = isatty(2) ? ShowProgress : nullptr; // (a line drawn in place: a terminal's)
+    PlanRender(scene, &settings);
+    return settings;
 }

@@ -1,12 +1,8 @@
 // app/options.cpp -- the command line: `ray [SCENE] [options]`, as the README describes it.
 //
 // A table of the options and how many values each takes, a parser per value kind, and the
-// checks of what goes together; then the render settings the options choose. Nothing here
-// prints; main does (ray.cpp).
+// checks of what goes together. Nothing here prints; main does (ray.cpp).
 #include "app.h"
-
-#include <thread>
-#include <unistd.h>
 
 #include <cstring>
 #include <vector>
@@ -400,34 +396,4 @@ bool ParseOptions(int argc, char **argv, Options *opt, std::string *error) {
         return false;
     }
     return CheckCombinations(opt, seen, error);
-}
-
-// The progress line on standard error: percentage, rays per second (every kind), time left,
-// redrawn in place, and cleared at the end.
-static void ShowProgress(const RenderProgress *p) {
-    if (p->finished)
-        fprintf(stderr, "\r%*s\r", 45, "");
-    else
-        fprintf(stderr, "\r%5.1f%%  %7.2f Mrays/s  %5.1f s left ", 100 * p->done,
-                p->raysPerSecond / 1e6, p->secondsLeft);
-    fflush(stderr);
-}
-
-RenderSettings ChosenSettings(const Options *opt, const Scene *scene) {
-    RenderSettings settings;
-    settings.width = opt->width ? opt->width : scene->width;
-    settings.height = opt->height ? opt->height : scene->height;
-    settings.samplesPerPixel = opt->spp;
-    settings.sampling = (SampleMethod)opt->sampling;
-    settings.depth = opt->depth ? opt->depth : scene->depth;
-    unsigned hardware = std::thread::hardware_concurrency();
-    settings.threads = opt->threads ? opt->threads : (hardware ? (int)hardware : 1);
-    if (opt->view)
-        settings.threads = 1; // (RenderView draws on one thread)
-    settings.methods = ChosenMethods(opt);
-    settings.path = {(Estimator)opt->estimator, (ScatterMethod)opt->scatter,
-                     (LightMethod)opt->lights, opt->roulette == 1, opt->seed};
-    settings.progress = isatty(2) ? ShowProgress : nullptr; // (a line drawn in place: a terminal's)
-    PlanRender(scene, &settings);
-    return settings;
 }

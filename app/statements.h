@@ -10,10 +10,10 @@
 
 // A limit that keeps a hostile or mistaken file from exhausting memory, high enough for the
 // scanned and exported models a mesh statement brings (a scanned statue of a million
-// triangles). A triangle costs about 390 bytes while a render is prepared (measured: the
-// Triangle, its block, its box and the BVH build's record), so 4 million shapes take about
-// 1.6 GB at the peak: what a machine of 4 GB can still hold. (The files themselves are read a
-// line at a time, and a line is at most kMaxLineLength long.)
+// triangles). A triangle costs a few hundred bytes while a render is prepared (the Triangle, its
+// block, its set-up and the BVH build's record: docs/speed.md), so 4 million shapes take under
+// 2 GB at the peak: what a machine of 4 GB can still hold. (The files themselves are read a line
+// at a time, and a line is at most kMaxLineLength long.)
 const size_t kMaxObjects = 4000000; // shapes, lights and materials together
 
 // One statement being read, for its handler and for error messages.

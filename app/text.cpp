@@ -30,8 +30,7 @@ LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::stri
     int c;
     bool tooLong = false, comment = false;
     // (Bytes are gathered a bufferful at a time, and read with getc_unlocked: the file is this
-    // thread's alone. A lock and an append for every byte were a third of the time of reading a
-    // large mesh.)
+    // thread's alone, and a lock and an append for every byte would cost more than the reading.)
     char kept[256];                 // (any size would do: this one holds a mesh's usual line whole)
     size_t waiting = 0, length = 0; // bytes in `kept`; bytes of the line so far
     while ((c = getc_unlocked(file)) != EOF && !EndsLine(file, c)) {
@@ -239,7 +238,7 @@ static bool NonzeroDigits(const std::string &t) {
 }
 
 // The T nearest to a decimal token (LooksDecimal), rounded once: as strtod (or strtof) gives it,
-// by std::from_chars (which takes no '+', and is several times faster: a large mesh is mostly
+// by std::from_chars (which takes no '+', and is faster than strtod: a large mesh is mostly
 // numbers). Where from_chars does not read the whole token, or finds it out of range, strtod or
 // strtof reads it, and tells too large (infinity) from too small (0). A float is read as a float:
 // read as the nearest double and then rounded again, a decimal just past the midpoint of two

@@ -85,8 +85,7 @@ static RT_INLINE void GrowItem(Bounds *b, const BuildItem *item) {
     GrowBy(b, &lo, &hi);
 }
 // The centre as a vector, its fourth lane 0. (That lane would be the index's bits, a subnormal
-// number, which a processor may take a hundred cycles to compute with: it doubled the binning's
-// time on the machine rt was measured on.)
+// number, which a processor may take a hundred cycles to compute with.)
 static RT_INLINE void LoadCentre(const BuildItem *item, Quad4 *c) {
     typedef decltype(*c < *c) Mask4;
     Mask4 keep = {-1, -1, -1, 0};
@@ -165,9 +164,8 @@ static RT_INLINE void FillAllBins(const BuildItem *items, int n, const Quad4 *lo
     }
 }
 
-// Below this many items a node's bins are found first, and only the full ones cleared: the
-// build of make_mesh's 82k-triangle sphere takes 155.9 million instructions with 16, 156.7 with
-// 32, 157.5 with 64, 158.2 with every node clearing all 48 bins.
+// Below this many items a node's bins are found first, and only the full ones cleared: a small
+// node fills few of its 48 bins, and clearing them all would cost more than filling them.
 const int kFewItems = 16;
 
 static RT_INLINE void FillFewBins(const BuildItem *items, int n, const Quad4 *lo,

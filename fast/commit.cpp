@@ -3,7 +3,7 @@
 // A scene is written, read and explained as the handouts' structs. Once per render, CommitScene
 // (after Embree's rtcCommitScene) copies the triangles, and the spheres, into blocks of kLanes,
 // coordinate by coordinate, for the kernel (kernel.cpp) to test a block at a time; and when the
-// scene has enough triangles that it pays (kBvhMinTriangles, measured), it builds a bounding
+// scene has enough triangles that it pays (kBvhMinTriangles), it builds a bounding
 // volume hierarchy over them: a binary tree, top down, each node split where build.cpp says (the
 // surface area heuristic over binned centroids: Wald, "On fast construction of SAH-based bounding
 // volume hierarchies", 2007; pbrt-v4 §7.3), then collapsed to four children a node. Large
@@ -15,7 +15,6 @@
 #include <algorithm>
 #include <atomic>
 #include <condition_variable>
-#include <cstdio>
 #include <deque>
 #include <memory>
 #include <mutex>
@@ -24,8 +23,8 @@
 #include <thread>
 
 // Below this many triangles the blocks are one list: a ray then tests them all, which is
-// cheaper than walking a tree for the assignment's five triangles. Measured with `rtbench
-// layout` (docs/speed.md): the tree wins from about this size on.
+// cheaper than walking a tree for the assignment's five triangles. `make bench` (its mesh table,
+// docs/speed.md) shows the tree winning from about this size on.
 const size_t kBvhMinTriangles = 32;
 
 // Below this depth the surface area heuristic splits; deeper (a heuristic that keeps splitting
@@ -90,8 +89,8 @@ struct Builder {
 
 // A subtree of at least this many triangles is left to any thread (a new task) rather than
 // built at once by the thread that splits it off: large enough that a task costs little
-// beside its work, small enough that the two threads finish about together. (1024 and 8192
-// build the 82k- and 1M-triangle meshes of make_mesh as fast, within the noise.)
+// beside its work, small enough that the two threads finish about together (the build's time
+// changes little from half to four times this).
 const int kTaskMin = 2048;
 
 static int AddTask(Builder *b, const Task *task) {
@@ -256,8 +255,9 @@ static void FillLeaves(Builder *b, const std::vector<Triangle> &triangles,
 
 // The items, made in the memory of the blocks, which are written only once the tree is built:
 // new memory costs most where it is first written (a page fault each 4 KB), and this way the
-// same pages serve both. The blocks are as many as the tree will likely need (make_mesh's
-// meshes need 3 to 5 per cent more than Blocks(n)), and enough to hold the items.
+// same pages serve both. The blocks are as many as the tree will likely need (its leaves leave
+// some lanes empty: a sixteenth more than Blocks(n) is room enough for the meshes of
+// tools/make_mesh), and enough to hold the items.
 static BuildItem *ItemsInBlocks(int n, SceneLayout *layout) {
     size_t items =
         ((size_t)n * sizeof(BuildItem) + sizeof(TriangleBlock) - 1) / sizeof(TriangleBlock);
@@ -268,13 +268,12 @@ static BuildItem *ItemsInBlocks(int n, SceneLayout *layout) {
     return first;
 }
 
-// The leaves a thread fills at a time: about 80 us of work (the 82k-triangle sphere of make_mesh
-// has some 14,000 leaves, filled in about 4.5 ms), so that the two threads finish within about
-// that of each other, and the shared counter is touched once a few hundred leaves.
+// The leaves a thread fills at a time: a small share of a large mesh's leaves, so that the two
+// threads finish close together, and the shared counter is touched once a few hundred leaves.
 const size_t kLeafShare = 256;
 
-// Below this many triangles the build runs on one thread: a thread takes some 50 us to start,
-// a build of this size a millisecond or two.
+// Below this many triangles the build runs on one thread: starting a thread would cost a good
+// part of what it could save.
 const int kThreadMin = 4096;
 
 // The set-ups (plane.cpp) of the triangles, in scene order, each made where it is kept: the
@@ -416,22 +415,4 @@ void CommitScene(Scene *scene, LayoutChoice choice, int threads, SceneLayout *la
     layout->scene = scene;
     layout->accelerator = {layout, SearchLayout, SearchEyeRays};
     scene->accelerator = &layout->accelerator;
-}
-
-std::string DescribeLayout(const Scene *scene, const SceneLayout *layout, double buildSeconds) {
-    char text[200];
-    if (scene->triangles.empty()) // (--layout bvh too: there is nothing to build a tree over)
-        return "triangles: none";
-    if (scene->accelerator != &layout->accelerator) {
-        snprintf(text, sizeof text, "triangles: %zu, tested one by one (the plain loop)",
-                 scene->triangles.size());
-        return text;
-    }
-    char tree[64] = "one list";
-    if (!layout->nodes.empty())
-        snprintf(tree, sizeof tree, "a BVH of %zu nodes of %d", layout->nodes.size(), kChildren);
-    snprintf(text, sizeof text, "triangles: %zu in %zu blocks of %d, %s (built in %.3g ms), %s",
-             scene->triangles.size(), layout->blocks.size(), kLanes, tree, buildSeconds * 1e3,
-             layout->vectors ? "blocks tested in AVX2 vectors" : "blocks tested lane by lane");
-    return text;
 }

@@ -28,6 +28,8 @@
 #include "kernel_packet.h"
 #include "kernel_walk.h"
 
+#include <cstdio>
+
 // 1 / d on each axis, as MakeSlabRay divides (each lane rounds as the scalar division does),
 // for OutOfReach: one vector division, made every search, and built in registers (three numbers
 // stored one by one and read back as one vector would wait for the stores).
@@ -261,4 +263,22 @@ void SearchEyeRays(const Accelerator *self, const Scene *scene, Methods methods,
         for (int k = first; k < first + n; k++)
             answered[k] = true;
     }
+}
+
+std::string DescribeLayout(const Scene *scene, const SceneLayout *layout, double buildSeconds) {
+    char text[200];
+    if (scene->triangles.empty()) // (--layout bvh too: there is nothing to build a tree over)
+        return "triangles: none";
+    if (scene->accelerator != &layout->accelerator) {
+        snprintf(text, sizeof text, "triangles: %zu, tested one by one (the plain loop)",
+                 scene->triangles.size());
+        return text;
+    }
+    char tree[64] = "one list";
+    if (!layout->nodes.empty())
+        snprintf(tree, sizeof tree, "a BVH of %zu nodes of %d", layout->nodes.size(), kChildren);
+    snprintf(text, sizeof text, "triangles: %zu in %zu blocks of %d, %s (built in %.3g ms), %s",
+             scene->triangles.size(), layout->blocks.size(), kLanes, tree, buildSeconds * 1e3,
+             layout->vectors ? "blocks tested in AVX2 vectors" : "blocks tested lane by lane");
+    return text;
 }

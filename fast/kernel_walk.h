@@ -29,8 +29,8 @@ struct NodeRay {
 };
 
 // (Made from the ray itself, with MakeSlabRay's operations, rather than from a SlabRay: a
-// SlabRay, built with one 32-byte store and copied with 16-byte loads that straddle it, made
-// every ray wait for its stores, 11% of the time of a 32-triangle mesh's eye rays.)
+// SlabRay, built with one 32-byte store and copied with 16-byte loads that straddle it, would
+// make every ray wait for its stores.)
 static RT_INLINE void MakeNodeRay(const Ray *ray, real tMin, const BvhNode *anyNode, NodeRay *r) {
     const real origin[3] = {ray->origin.x, ray->origin.y, ray->origin.z};
     const real dir[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
