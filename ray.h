@@ -356,9 +356,20 @@ struct Accelerator {
 
 // ---- scene_default.cpp, scene_test.cpp: the built-in scenes ----------------------------------
 
-// The scene every scene starts from: nothing in it, 512 x 512, `camera perspective 0 0 0 2 2`,
-// ambient 0.2, floor shading, black background, depth 10.
-void InitScene(Scene *scene);
+// The scene every scene starts from (the built-in ones and every scene file): nothing in it,
+// 512 x 512, `camera perspective 0 0 0 2 2`, ambient 0.2, floor shading, black background,
+// depth 10.
+inline void InitScene(Scene *scene) {
+    *scene = Scene();
+    scene->width = scene->height = 512;
+    scene->camera = Camera();
+    scene->camera.kind = CAMERA_PERSPECTIVE;
+    scene->camera.perspective = {{0, 0, 0}, 2, 2, 512, 512};
+    scene->shading = SHADING_FLOOR;
+    scene->ambient = real(0.2);
+    scene->background = {0, 0, 0};
+    scene->depth = 10;
+}
 
 void BuildDefaultScene(Scene *scene); // the assignment scene (the handout's scene;
                                       // scenes/reference.scene holds it as a file)

@@ -156,7 +156,7 @@ static bool TimeToReach(const std::vector<PathRow> &rows, const std::string &sce
 }
 
 // "X reaches Y's error (at 256 samples) in P% of its time", or in the same time within noise
-// when the two ranges overlap, or that it does not reach it.
+// when the two ranges overlap, or that it is below it from the first sample, or never gets there.
 static void Compare(FILE *md, const std::vector<PathRow> &rows, const std::string &scene,
                     const char *x, const char *y) {
     const PathRow *base = Find(rows, scene, y, 256);
@@ -164,6 +164,12 @@ static void Compare(FILE *md, const std::vector<PathRow> &rows, const std::strin
     if (!base)
         return;
     fprintf(md, "- %s: %s ", scene.c_str(), x);
+    const PathRow *first = Find(rows, scene, x, 1);
+    if (first && first->rmse <= base->rmse) {
+        fprintf(md, "is already below %s's RMSE at 256 spp (%.2f) at 1 spp (%.2f, %s ms).\n", y,
+                base->rmse, first->rmse, SpreadText(first->ms, "%.0f").c_str());
+        return;
+    }
     if (!TimeToReach(rows, scene, x, base->rmse, &t)) {
         fprintf(md, "does not reach %s's RMSE at 256 spp (%.2f) within 256 spp.\n", y, base->rmse);
         return;

@@ -114,7 +114,8 @@ void Conclusions(std::ostream &md, const std::vector<Result> &rs, const std::str
                      Versus(f16, d16, "float", "double").c_str(), 100 * fDiff->off1,
                      100 * fDiff->off8, scene.c_str(), f1->rmse, d1->rmse);
     if (cr && wt && crDiff)
-        md << Format("- Triangles: %s. Cramer's image differs from the watertight one in %.4f%% "
+        md << Format("- Triangles, both in the plain loop: %s. Cramer's image differs from the "
+                     "watertight one in %.4f%% "
                      "of the pixels by more than 1/255: at scale 1 these are ties, rays exactly "
                      "through an edge two triangles share that take the other one, both right "
                      "(`rtbench methods` sorts them); Cramer's real cracks are what the hard-case "
@@ -122,7 +123,8 @@ void Conclusions(std::ostream &md, const std::vector<Result> &rs, const std::str
                      Versus(wt, cr, "the watertight default", "the handout's Cramer form").c_str(),
                      100 * crDiff->off1);
     if (tb && st && tbDiff)
-        md << Format("- Spheres: %s. The textbook image differs from the stable one in %.3f%% of "
+        md << Format("- Spheres, both in the plain loop: %s. The textbook image differs from the "
+                     "stable one in %.3f%% of "
                      "the pixels by more than 1/255 (RMSE against the reference %.3f, stable "
                      "%.3f; heat map `%s_textbook_sphere.png`).\n",
                      Versus(st, tb, "the stable form", "the textbook quadratic").c_str(),

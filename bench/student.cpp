@@ -1,11 +1,12 @@
 // student.cpp -- a plain float student solution of the ray-tracing assignment. NOT part of rt.
 //
-// Why it exists: rt's speed target is stated against "a plain float student solution built -O2".
-// This file is that baseline, written the way a careful student writes the assignment: the
-// handout's formulas (GetRay, the textbook sphere quadratic with A, B, C, Cramer's rule for
-// triangles with the variables A..M), the nearest hit over a list of shapes, diffuse shading with
-// an ambient floor, hard shadows with an epsilon offset, perfect mirrors, at most 10 rays in a
-// chain, black on a miss; `float` everywhere, one thread, no tricks and no hand optimisation.
+// Why it exists: rt's speed is measured against what a student would write, a plain float
+// solution built -O2. This file is that baseline, written the way a careful student writes the
+// assignment: the handout's formulas (GetRay, the textbook sphere quadratic with A, B, C,
+// Cramer's rule for triangles with the variables A..M), the nearest hit over a list of shapes,
+// diffuse shading with an ambient floor, hard shadows with an epsilon offset, perfect mirrors,
+// at most 10 rays in a chain, black on a miss; `float` everywhere, one thread, no tricks and no
+// hand optimisation.
 // It draws the same image as `./ray -o x.png --spp 16`: the assignment scene (scene_default.cpp,
 // hard-coded here as a student's main builds it), 512 x 512, 16 samples per pixel at the centres
 // of a regular 4 x 4 grid in each pixel (rt's default `--aa grid`), written with libpng's default
