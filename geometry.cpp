@@ -371,15 +371,17 @@ void FindEyeRayHits(const Scene *scene, Methods methods, const Ray *rays, int co
 // The three ways of leaving a surface (SelfHitMethod). The handouts': start at the hit point and
 // ignore hits closer than an epsilon (the journal's t_min = 0.001), or ignore the shape left (the
 // second handout's shadow rays). rt's: start where no rounding can put the ray behind the
-// surface, the hit point moved off it by the point's own error bound (OffsetRayOrigin), so no
-// epsilon is needed at any scale; a triangle the ray plainly goes away from is then passed over,
-// which changes no answer and saves its test (StartLeaving).
-void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray, SelfHit *from) {
+// surface, the hit point moved off it by the point's own error bound, so no epsilon is needed at
+// any scale, and for a hit near a triangle's edge moved in from the edge first, so that the ray
+// starts inside a closed mesh (LeavingPoint); a triangle the ray plainly goes away from is then
+// passed over, which changes no answer and saves its test (StartLeaving).
+void LeaveSurface(const Scene *scene, const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray,
+                  SelfHit *from) {
     *from = kNoSelfHit;
     ray->dir = dir;
     ray->origin = hit->point;
-    if (methods->selfHit == SELF_HIT_BOUND) {    // handout: skip the shape left, or t_min = 0.001
-        ray->origin = OffsetRayOrigin(hit, dir); // robust: off the surface by its error bound
+    if (methods->selfHit == SELF_HIT_BOUND) { // handout: skip the shape left, or t_min = 0.001
+        ray->origin = LeavingPoint(scene, hit, dir); // robust: off the surface, in from its edges
         *from = StartLeaving(hit, dir, dir);
     } else if (methods->selfHit == SELF_HIT_EPSILON) {
         from->tMin = methods->epsilon / SafeLength(dir); // epsilon world units along the ray
@@ -393,15 +395,15 @@ void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray,
 // origin, so t = 1 is the light itself and the open interval (tMin, 1) holds every possible
 // blocker, however far away the light is. Under the bound, the origin moves to the light's side
 // and the pass-over is judged for the final direction.
-bool ShadowRay(const RayHit *hit, vec3 lightPosition, const Methods *methods, Ray *ray,
-               SelfHit *from) {
+bool ShadowRay(const Scene *scene, const RayHit *hit, vec3 lightPosition, const Methods *methods,
+               Ray *ray, SelfHit *from) {
     vec3 side = lightPosition - hit->point;
     if (methods->selfHit == SELF_HIT_BOUND) {
-        ray->origin = OffsetRayOrigin(hit, side); // robust: as in LeaveSurface
+        ray->origin = LeavingPoint(scene, hit, side); // robust: as in LeaveSurface
         ray->dir = lightPosition - ray->origin;
         *from = StartLeaving(hit, side, ray->dir);
     } else {
-        LeaveSurface(hit, side, methods, ray, from);
+        LeaveSurface(scene, hit, side, methods, ray, from);
         ray->dir = lightPosition - ray->origin;
         if (methods->selfHit == SELF_HIT_EPSILON)
             from->tMin = methods->epsilon / SafeLength(ray->dir);

@@ -63,11 +63,12 @@ static real Random(const Path *path, Decision d) {
 // and refracts the others (or reflects, under total internal reflection). Each choice is made
 // with the probability of its share, so the shares drop out of the estimate. Writes the ray that
 // leaves the surface (`out` may be `in`) and returns its kind.
-static RayKind MirrorOrGlass(const Ray *in, const RayHit *hit, const Material *m, real pick,
-                             const Methods *methods, Ray *out, SelfHit *from) {
+static RayKind MirrorOrGlass(const Scene *scene, const Ray *in, const RayHit *hit,
+                             const Material *m, real pick, const Methods *methods, Ray *out,
+                             SelfHit *from) {
     vec3 d = SafeNormalize(in->dir), n = hit->normal;
     if (pick < m->mirror) {
-        LeaveSurface(hit, Reflect(d, n), methods, out, from);
+        LeaveSurface(scene, hit, Reflect(d, n), methods, out, from);
         return RAY_REFLECTION;
     }
     real eta = hit->frontFace ? 1 / m->ior : m->ior, cosI = -Dot(d, n);
@@ -76,7 +77,7 @@ static RayKind MirrorOrGlass(const Ray *in, const RayHit *hit, const Material *m
     vec3 refracted;
     bool reflect = (pick - m->mirror) < reflectance * (1 - m->mirror) || // (the same number,
                    !Refract(d, n, eta, &refracted);                      // past K)
-    LeaveSurface(hit, reflect ? Reflect(d, n) : refracted, methods, out, from);
+    LeaveSurface(scene, hit, reflect ? Reflect(d, n) : refracted, methods, out, from);
     return reflect ? RAY_REFLECTION : RAY_REFRACTION;
 }
 
@@ -105,7 +106,8 @@ static color JournalShade(Path *path, const Ray *ray, bool found, const RayHit *
     Ray next;
     SelfHit leaving;
     if (pick < m->mirror || m->ior > 0) {
-        RayKind kind = MirrorOrGlass(ray, hit, m, pick, &path->settings->methods, &next, &leaving);
+        RayKind kind = MirrorOrGlass(path->scene, ray, hit, m, pick, &path->settings->methods,
+                                     &next, &leaving);
         return m->emit + JournalColor(path, &next, &leaving, kind, number + 1);
     }
     if (!(MaxComponent(m->diffuse) > 0)) // black: what a ray would bring back counts for 0
@@ -114,7 +116,7 @@ static color JournalShade(Path *path, const Ray *ray, bool found, const RayHit *
         hit->normal + RandomUnitVector(DiskPoint(&path->sample, number - 1, SCATTER_DISK));
     if (!(Dot(toward, hit->normal) > 0)) // the random vector all but -normal: no way out
         toward = hit->normal;
-    LeaveSurface(hit, toward, &path->settings->methods, &next, &leaving);
+    LeaveSurface(path->scene, hit, toward, &path->settings->methods, &next, &leaving);
     return m->emit + m->diffuse * JournalColor(path, &next, &leaving, RAY_DIFFUSE, number + 1);
 }
 
@@ -155,18 +157,18 @@ static color JournalColor(Path *path, const Ray *ray, const SelfHit *from, RayKi
 
 // Where the rays from a diffuse hit start. All go to the side its normal faces (each is cast
 // only with cos theta > 0), and the self-hit bound moves the hit point off the surface to that
-// side whatever the direction (OffsetRayOrigin): one point, moved once a vertex. Under the other
+// side whatever the direction (LeavingPoint): one point, moved once a vertex. Under the other
 // methods LeaveSurface and ShadowRay decide for each ray.
 static void Depart(Path *path, const RayHit *hit) {
     path->departs = path->settings->methods.selfHit == SELF_HIT_BOUND;
     if (path->departs)
-        path->departure = OffsetRayOrigin(hit, hit->normal);
+        path->departure = LeavingPoint(path->scene, hit, hit->normal);
 }
 
 // ShadowRay from the hit to `target`, from the departure point when there is one.
 static bool CastShadow(const Path *path, const RayHit *hit, vec3 target, Ray *ray, SelfHit *from) {
     if (!path->departs)
-        return ShadowRay(hit, target, &path->settings->methods, ray, from);
+        return ShadowRay(path->scene, hit, target, &path->settings->methods, ray, from);
     *ray = {path->departure, target - path->departure};
     *from = StartLeaving(hit, hit->normal, ray->dir);
     return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
@@ -227,6 +229,8 @@ static bool EmitterVisible(Path *path, const RayHit *hit, const Emitter *e, vec3
 static color PointLights(Path *path, const RayHit *hit, color rho) {
     color sum = {0, 0, 0};
     for (const Light &light : path->scene->lights) {
+        if (!Shines(&light))
+            continue;
         vec3 toLight = light.position - hit->point;
         real distance = SafeLength(toLight);
         real cosTheta = Dot(hit->normal, toLight) / distance;
@@ -311,8 +315,8 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     if (pick < m->mirror || m->ior > 0) {
         if (last)
             return false;
-        path->kind = MirrorOrGlass(&path->ray, hit, m, pick, &path->settings->methods, &path->ray,
-                                   &path->from);
+        path->kind = MirrorOrGlass(path->scene, &path->ray, hit, m, pick, &path->settings->methods,
+                                   &path->ray, &path->from);
         return true;
     }
     color rho = m->diffuse;
@@ -338,7 +342,7 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
                     (method == SCATTER_COSINE ? rho : (cosTheta / (kPi * path->scatterPdf)) * rho);
     path->kind = RAY_DIFFUSE;
     if (!path->departs)
-        LeaveSurface(hit, dir, &path->settings->methods, &path->ray, &path->from);
+        LeaveSurface(path->scene, hit, dir, &path->settings->methods, &path->ray, &path->from);
     else
         path->ray = {path->departure, dir}, path->from = StartLeaving(hit, hit->normal, dir);
     return true;

@@ -120,6 +120,11 @@ struct Light {
     color intensity;
 };
 
+// Whether the light gives any light (an intensity of 0 0 0 is legal, and lights nothing).
+inline bool Shines(const Light *light) {
+    return light->intensity.x > 0 || light->intensity.y > 0 || light->intensity.z > 0;
+}
+
 // The three lighting rules of the README's scene format (`shading floor|phong|path`).
 enum ShadingModel {
     SHADING_FLOOR, // the assignment handout's kd * max(ambient, sum of I (N.L))
@@ -278,17 +283,18 @@ const int kEyeRaysTogether = 8;
 void FindEyeRayHits(const Scene *scene, Methods methods, const Ray *rays, int count, RayHit *hits,
                     bool *found);
 
-// The ray that leaves a hit in direction dir, and what it must not hit, by the self-hit method:
-// bound, from OffsetRayOrigin (robust/robust.h), passing over the triangle it leaves where
-// PassesOver; epsilon, from the hit point, ignoring hits closer than methods->epsilon; skip,
-// from the hit point, ignoring the shape it leaves.
-void LeaveSurface(const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray, SelfHit *from);
+// The ray that leaves a hit on a shape of `scene` in direction dir, and what it must not hit, by
+// the self-hit method: bound, from LeavingPoint (robust/robust.h), passing over the triangle it
+// leaves where PassesOver; epsilon, from the hit point, ignoring hits closer than
+// methods->epsilon; skip, from the hit point, ignoring the shape it leaves.
+void LeaveSurface(const Scene *scene, const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray,
+                  SelfHit *from);
 
 // The shadow ray from a hit to a light at lightPosition, leaving the surface as LeaveSurface
 // does, with t = 1 at the light, so a blocker is any hit in (from->tMin, 1). False if the light
 // is where the ray starts, where nothing can be in between.
-bool ShadowRay(const RayHit *hit, vec3 lightPosition, const Methods *methods, Ray *ray,
-               SelfHit *from);
+bool ShadowRay(const Scene *scene, const RayHit *hit, vec3 lightPosition, const Methods *methods,
+               Ray *ray, SelfHit *from);
 
 // ---- the seam: speed machinery that main may install (fast/) --------------------------------
 

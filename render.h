@@ -23,7 +23,8 @@ struct Emitter {
 // Which effects a render can need, decided once per render from the scene and the settings
 // (PlanEffects); the shading code skips whole paths for the absent ones.
 struct Effects {
-    bool shadows;                  // lights, and shapes that could stand in their way
+    bool shadows;                  // lights that can change a surface, and shapes that could
+                                   // stand in their way (LightsCanShow)
     bool reflection;               // a material with mirror > 0 or glass, and depth > 1
     bool refraction;               // a glass material, and depth > 1
     bool specular;                 // Phong shading, lights, and a material with ks > 0
@@ -31,6 +32,7 @@ struct Effects {
     bool indirect;                 // `shading path`: light scattered by diffuse surfaces
     std::vector<Emitter> emitters; // `shading path`: the shapes that emit, for next-event
                                    // estimation (path.cpp)
+    color lightSum;                // every light's intensity added up
 };
 
 // Where a pixel's samples go (--aa).
@@ -148,6 +150,10 @@ struct TraceLog {
 
 // Decides which effects a render of this scene with these settings can need (see Effects).
 void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects);
+
+// Whether the lights, whose intensities add up to lightSum, can change how a surface of material
+// m looks under the scene's shading (shade.cpp): where they cannot, it casts no shadow ray.
+bool LightsCanShow(const Scene *scene, const Material *m, color lightSum);
 
 // Colour seen along `ray`, a ray of the given kind at `chain` in its chain, leaving a surface as
 // `from` says (kNoSelfHit for a primary ray). Counts it, and every ray it leads to, in log->stats

@@ -48,7 +48,8 @@ static bool LightIsVisible(const Shading *sh, const RayHit *hit, const Light *li
     const Methods *methods = &sh->settings->methods;
     Ray shadow;
     SelfHit from;
-    if (!sh->settings->effects.shadows || !ShadowRay(hit, light->position, methods, &shadow, &from))
+    if (!sh->settings->effects.shadows ||
+        !ShadowRay(sh->scene, hit, light->position, methods, &shadow, &from))
         return true;
     sh->log->stats.shadow++;
     if (!sh->log->tree) {
@@ -71,15 +72,19 @@ static bool LightIsVisible(const Shading *sh, const RayHit *hit, const Light *li
 // (N.L <= 0) contributes nothing and costs no shadow ray (second handout).
 static color FloorColor(const Shading *sh, const Surface *s) {
     const RayHit *hit = s->hit;
+    real a = sh->scene->ambient; // handout: kd * max(ambient, N.L)
+    if (!LightsCanShow(sh->scene, s->m, sh->settings->effects.lightSum))
+        return a * s->m->diffuse;
     color sum = {0, 0, 0};
     for (const Light &light : sh->scene->lights) {
+        if (!Shines(&light))
+            continue;
         vec3 toLight = light.position - hit->point;
         real nDotL = Dot(hit->normal, toLight);
         if (!(nDotL > 0) || !LightIsVisible(sh, hit, &light))
             continue;
         sum = sum + (nDotL / SafeLength(toLight)) * light.intensity; // handout: N.normalize(L)
     }
-    real a = sh->scene->ambient; // handout: kd * max(ambient, N.L)
     return s->m->diffuse * color{std::max(a, sum.x), std::max(a, sum.y), std::max(a, sum.z)};
 }
 
@@ -93,7 +98,11 @@ static color PhongColor(const Shading *sh, const Surface *s) {
     color result = sh->scene->ambient * m->ambient;
     vec3 n = s->hit->normal, v = -SafeNormalize(s->ray->dir);
     bool specular = sh->settings->effects.specular && m->specular > 0;
+    if (!LightsCanShow(sh->scene, m, sh->settings->effects.lightSum))
+        return result;
     for (const Light &light : sh->scene->lights) {
+        if (!Shines(&light))
+            continue;
         vec3 l = SafeNormalize(light.position - s->hit->point);
         real nDotL = Dot(n, l);
         if (!(nDotL > 0) || !LightIsVisible(sh, s->hit, &light))
@@ -188,7 +197,7 @@ static color FollowRay(const Shading *sh, const Surface *s, RayKind kind, vec3 d
         return {0, 0, 0};
     Ray ray;
     SelfHit from;
-    LeaveSurface(s->hit, dir, &sh->settings->methods, &ray, &from);
+    LeaveSurface(sh->scene, s->hit, dir, &sh->settings->methods, &ray, &from);
     return TraceRay(sh->scene, sh->settings, kind, &ray, &from, next, sh->log);
 }
 
@@ -275,6 +284,25 @@ color TraceFoundEyeRay(const Scene *scene, const RenderSettings *settings, const
 
 // ---- what a scene calls for ----------------------------------------------------------------
 
+// Whether the lights can change how a surface of material m looks, so that a shadow ray toward
+// one could change a pixel: some light shines, and the surface shows its own colour (not a
+// perfect mirror, not glass) with some light in it. Under `floor`, kd * max(ambient, S) with S
+// at most the lights' sum (N.L <= 1 for unit vectors): only a channel with kd > 0 whose ambient
+// floor is below that sum; under `phong`, a diffuse or specular colour; under `path`, a diffuse
+// colour (the point lights' next-event rays).
+bool LightsCanShow(const Scene *scene, const Material *m, color lightSum) {
+    if (!(m->mirror < 1) || m->ior > 0)
+        return false;
+    color kd = m->diffuse;
+    real a = scene->ambient;
+    if (scene->shading == SHADING_FLOOR)
+        return (kd.x > 0 && a < lightSum.x) || (kd.y > 0 && a < lightSum.y) ||
+               (kd.z > 0 && a < lightSum.z);
+    bool shines = lightSum.x > 0 || lightSum.y > 0 || lightSum.z > 0;
+    bool specular = scene->shading == SHADING_PHONG && m->specular > 0;
+    return shines && (kd.x > 0 || kd.y > 0 || kd.z > 0 || specular);
+}
+
 static bool MaterialIsUsed(const Scene *scene, int material) {
     for (const Sphere &s : scene->spheres)
         if (s.material == material)
@@ -338,9 +366,12 @@ void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters) {
 
 void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *effects) {
     bool shapes = !scene->spheres.empty() || !scene->triangles.empty();
-    bool lights = !scene->lights.empty(), path = scene->shading == SHADING_PATH;
-    *effects =
-        Effects{lights && shapes, false, false, false, settings->samplesPerPixel > 1, false, {}};
+    bool lights = false, path = scene->shading == SHADING_PATH;
+    for (const Light &light : scene->lights)
+        lights = lights || Shines(&light);
+    *effects = Effects{false, false, false, false, settings->samplesPerPixel > 1, false, {}, {}};
+    for (const Light &light : scene->lights)
+        effects->lightSum = effects->lightSum + light.intensity;
     bool chain = settings->depth > 1; // room for a ray after the primary one
     for (int k = 0; k < (int)scene->materials.size(); k++) {
         const Material *m = &scene->materials[k];
@@ -348,6 +379,8 @@ void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *ef
             continue;
         effects->reflection = effects->reflection || (chain && (m->mirror > 0 || m->ior > 0));
         effects->refraction = effects->refraction || (chain && m->ior > 0);
+        effects->shadows =
+            effects->shadows || (shapes && LightsCanShow(scene, m, effects->lightSum));
         effects->specular =
             effects->specular || (scene->shading == SHADING_PHONG && lights && m->specular > 0);
         bool diffuse = m->mirror < 1 && !(m->ior > 0) && MaxComponent(m->diffuse) > 0;

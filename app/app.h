@@ -26,11 +26,23 @@ bool CheckOutputPath(const std::string &output, const std::vector<std::string> &
 bool WriteImage(const char *path, const Image *image, std::string *error);
 
 // How two images of the same size differ, channel values in 0..255.
+// One pixel that differs: where it is (x from the left, y from the top, as --pixel counts), its
+// largest channel difference, and its colour in each image.
+struct PixelDifference {
+    int x, y, largest;
+    unsigned char a[3], b[3];
+};
+
+// The pixels of the worst differences --compare lists, so that --pixel can look at them.
+const int kWorstPixels = 5;
+
 struct ImageDifference {
     double rmse;     // root mean square difference over all channels
     double psnr;     // 20 log10(255 / rmse) in dB; infinite for identical images
     int largest;     // largest difference of one channel
     long pixelsOver; // pixels with a channel differing by more than the tolerance
+    std::vector<PixelDifference> worst; // of those, the kWorstPixels that differ most, largest
+                                        // first (of equal ones, the first in reading order)
 };
 
 // A heat scale for x in [0, 1]: black, red, yellow, white.
@@ -63,10 +75,16 @@ enum LineStatus {
 };
 
 // Reads line number `lineNumber` (from 1) of a text file, without its comment (from `#` on); on
-// line 1 a UTF-8 byte-order mark is skipped. Sets *error for LINE_TOO_LONG and LINE_BAD.
+// line 1 a UTF-8 byte-order mark is skipped. Sets *error for LINE_TOO_LONG and LINE_BAD (a NUL
+// byte, UTF-16 text).
 LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::string *error);
 
-// Splits a line into tokens at spaces and tabs, up to a `#` (the rest is a comment).
+// Where a line's comment begins: its first `#`, but for one inside a number as old Windows
+// programs printed NaN and infinity (1.#QNAN, -1.#IND, 1.#INF), which is refused as a number
+// with a message that says so; line.size() if it has none.
+size_t CommentStart(const std::string &line);
+
+// Splits a line into tokens at spaces and tabs, up to its comment (CommentStart).
 void Tokenize(const std::string &line, std::vector<std::string> *tokens);
 
 // A token as it may be shown in a message: quoted, at most 40 code points; UTF-8 text as written,
@@ -99,6 +117,10 @@ bool LooksDecimal(const std::string &token);
 // Returns false and sets *error for anything else (inf, nan, hexadecimal, trailing characters).
 bool ParseReal(const std::string &token, real *value, std::string *error);
 
+// Whether a token is a decimal number too small to be anything but 0 in `real` (1e-400; in float
+// 1e-50), which ParseReal refuses.
+bool TooSmallForNumber(const std::string &token);
+
 // Whether a token is written as a whole number: an optional sign, then decimal digits, of any
 // length.
 bool IsWholeNumber(const std::string &token);
@@ -130,9 +152,12 @@ vec3 TransformVertex(const std::vector<MeshStep> &steps, vec3 p);
 // Reads a Wavefront OBJ file, open as `file` and called meshName in messages: every face as
 // triangles of `material` (a fan from its first corner), its vertices moved by `steps`,
 // appended to *triangles, at most maxTriangles of them. False with *error = "MESH:LINE: message"
-// for a malformed line, a file without faces, or more triangles than that.
+// for a malformed line, a file without faces, or more triangles than that; where the mesh
+// statement is to blame (its transform words, the scene's limit), the message names it by
+// `statement` ("SCENE:LINE").
 bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<MeshStep> &steps,
-             size_t maxTriangles, std::vector<Triangle> *triangles, std::string *error);
+             size_t maxTriangles, const std::string &statement, std::vector<Triangle> *triangles,
+             std::string *error);
 
 // A mesh statement's PATH as rt opens it: relative to the folder of the scene file that names it
 // (an absolute path as given).

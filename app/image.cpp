@@ -319,7 +319,11 @@ bool CompareImages(const Image *a, const Image *b, int tolerance, ImageDifferenc
     heatmap->height = a->height;
     heatmap->pixels.assign(pixels * 3, 0);
     double sumSquares = 0;
-    *difference = ImageDifference{0, 0, 0, 0};
+    *difference = ImageDifference{0, 0, 0, 0, {}};
+    auto worse = [](const PixelDifference &u, const PixelDifference &v) {
+        return u.largest > v.largest ||
+               (u.largest == v.largest && (u.y < v.y || (u.y == v.y && u.x < v.x)));
+    };
     for (size_t p = 0; p < pixels; p++) {
         int largest = 0;
         for (int c = 0; c < 3; c++) {
@@ -329,6 +333,15 @@ bool CompareImages(const Image *a, const Image *b, int tolerance, ImageDifferenc
         }
         difference->largest = std::max(difference->largest, largest);
         difference->pixelsOver += largest > tolerance;
+        std::vector<PixelDifference> *worst = &difference->worst;
+        if (largest > tolerance &&
+            ((int)worst->size() < kWorstPixels || largest > worst->back().largest)) {
+            PixelDifference d = {(int)(p % a->width), (int)(p / a->width), largest, {}, {}};
+            memcpy(d.a, &a->pixels[3 * p], 3), memcpy(d.b, &b->pixels[3 * p], 3);
+            worst->insert(std::upper_bound(worst->begin(), worst->end(), d, worse), d);
+            if ((int)worst->size() > kWorstPixels)
+                worst->pop_back();
+        }
         color heat = HeatColor(real(largest) / 255);
         heatmap->pixels[3 * p + 0] = ToByte(heat.x);
         heatmap->pixels[3 * p + 1] = ToByte(heat.y);

@@ -151,7 +151,8 @@ vec3 TransformVertex(const std::vector<MeshStep> &steps, vec3 p) {
 // `v x y z [w]`: the position, moved by the transform words. Further numbers (w, or the vertex
 // colour r g b that some exporters add) are checked as numbers and not used.
 static bool ReadVertex(const std::vector<std::string> &tokens, const std::vector<MeshStep> &steps,
-                       std::vector<vec3> *vertices, std::string *error) {
+                       const std::string &statement, std::vector<vec3> *vertices,
+                       std::string *error) {
     real v[3];
     for (size_t k = 1; k < tokens.size(); k++) { // (each word first: `v 0,0,0` is one bad number)
         real value;
@@ -172,7 +173,8 @@ static bool ReadVertex(const std::vector<std::string> &tokens, const std::vector
     }
     vec3 p = TransformVertex(steps, {v[0], v[1], v[2]});
     if (!IsFinite(p)) {
-        *error = "v: the transform words move this vertex beyond the range of numbers";
+        *error = "v: the transform words of the mesh statement at " + statement +
+                 " move this vertex beyond the range of numbers";
         return false;
     }
     vertices->push_back(p);
@@ -223,14 +225,16 @@ static bool ReadCorner(const std::string &corner, size_t vertexCount, const std:
 // that keeps the face's winding, degenerate ones included (they are harmless: no ray hits them).
 static bool ReadFace(const std::vector<std::string> &tokens, const std::vector<vec3> &vertices,
                      int material, size_t most, const std::string &hint,
-                     std::vector<Triangle> *triangles, std::string *error) {
+                     const std::string &statement, std::vector<Triangle> *triangles,
+                     std::string *error) {
     size_t corners = tokens.size() - 1;
     if (corners < 3) {
         *error = "f: a face needs at least 3 corners, this one has " + std::to_string(corners);
         return false;
     }
     if (triangles->size() + (corners - 2) > most) { // most: how many *triangles may hold
-        *error = "too many triangles: rt's limit of shapes in a scene is reached";
+        *error = "too many triangles: with the mesh statement at " + statement +
+                 ", rt's limit of shapes in a scene is reached";
         return false;
     }
     size_t first, previous, next;
@@ -253,7 +257,8 @@ static std::string CapitalsHint(int capitals) {
 }
 
 bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<MeshStep> &steps,
-             size_t maxTriangles, std::vector<Triangle> *triangles, std::string *error) {
+             size_t maxTriangles, const std::string &statement, std::vector<Triangle> *triangles,
+             std::string *error) {
     std::vector<vec3> vertices;
     std::vector<std::string> tokens;
     std::string line, why;
@@ -269,15 +274,20 @@ bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<M
         if (lineNumber == INT_MAX) // line numbers are ints; a real mesh is far shorter
             return MeshFail(meshName, lineNumber, "too many lines", error);
         Tokenize(line, &tokens);
+        if (!tokens.empty() && tokens.back().back() == '\\') // (the OBJ specification's)
+            return MeshFail(meshName, lineNumber,
+                            "a line that ends in '\\' goes on in the next one in some OBJ files; "
+                            "rt does not join lines: put the statement on one line",
+                            error);
         // (A statement OBJ does not know is skipped, as the format says; 'V' and 'F' are
         // counted, to say why a face finds too few vertices, or none is found.)
         capitals += !tokens.empty() && (tokens[0] == "V" || tokens[0] == "F");
         bool read = true;
         if (!tokens.empty() && tokens[0] == "v")
-            read = ReadVertex(tokens, steps, &vertices, &why);
+            read = ReadVertex(tokens, steps, statement, &vertices, &why);
         if (!tokens.empty() && tokens[0] == "f") {
-            read =
-                ReadFace(tokens, vertices, material, most, CapitalsHint(capitals), triangles, &why);
+            read = ReadFace(tokens, vertices, material, most, CapitalsHint(capitals), statement,
+                            triangles, &why);
             faces++;
         }
         if (!read)
@@ -335,7 +345,8 @@ bool ReadMeshStatement(const std::vector<std::string> &tokens, const char *scene
         return false;
     }
     bool read =
-        ReadObj(file, path.c_str(), material, steps, maxTriangles, &scene->triangles, error);
+        ReadObj(file, path.c_str(), material, steps, maxTriangles,
+                std::string(sceneFile) + ":" + std::to_string(line), &scene->triangles, error);
     fclose(file);
     if (read &&
         std::find(scene->meshFiles.begin(), scene->meshFiles.end(), path) == scene->meshFiles.end())

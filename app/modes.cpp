@@ -37,6 +37,11 @@ int CompareMode(const Options *opt) {
     printf("rmse: %.6f\npsnr: %.2f dB\nlargest difference: %d\npixels over tolerance %g: %ld of "
            "%ld\n",
            d.rmse, d.psnr, d.largest, opt->tolerance, d.pixelsOver, (long)a.width * a.height);
+    if (!d.worst.empty())
+        printf("worst pixels (x y: first image, second image):\n");
+    for (const PixelDifference &p : d.worst)
+        printf("  %d %d: %d %d %d, %d %d %d\n", p.x, p.y, p.a[0], p.a[1], p.a[2], p.b[0], p.b[1],
+               p.b[2]);
     if (!opt->output.empty() && !WriteImage(opt->output.c_str(), &heat, &error)) {
         Complain(error);
         return 3;
@@ -62,6 +67,9 @@ int ProbeMode(const Options *opt, const Scene *scene, const RenderSettings *sett
         Complain(opt->raysFile + ": " + strerror(errno));
         return 2;
     }
+    // From a pipe or a terminal, each answer goes out as its line is read: the program at the
+    // other end may wait for it before it writes the next line. From a file, they are buffered.
+    bool answerEachLine = fstat(fileno(file), &info) != 0 || !S_ISREG(info.st_mode);
     int status = 0;
     std::string line, error;
     for (int lineNumber = 1;; lineNumber++) {
@@ -82,6 +90,8 @@ int ProbeMode(const Options *opt, const Scene *scene, const RenderSettings *sett
         } else if (!blank) {
             printf("%s\n", ProbeRayJson(scene, settings, &ray).c_str());
         }
+        if (answerEachLine)
+            fflush(stdout);
         if (ferror(stdout)) { // no one reads the answers any more, or the disk is full
             Complain(std::string("standard output: ") + strerror(errno));
             return 3;
@@ -152,11 +162,15 @@ std::string OneColourWarning(const Scene *scene) {
     for (const Material &m : scene->materials)
         anyEmit = anyEmit || Emits(&m);
     bool unlit = scene->shading == SHADING_PATH ? !anyEmit : scene->ambient == 0;
-    if (scene->lights.empty() && unlit && b.x == 0 && b.y == 0 && b.z == 0)
+    bool shines = false; // (a light of intensity 0 0 0 lights nothing)
+    for (const Light &light : scene->lights)
+        shines = shines || Shines(&light);
+    if (!shines && unlit && b.x == 0 && b.y == 0 && b.z == 0)
         return scene->shading == SHADING_PATH
-                   ? "nothing gives off light (no light, no material that emits, a black "
-                     "background): every pixel is black"
-                   : "no light, ambient 0 and a black background: every pixel is black";
+                   ? "nothing gives off light (no light that shines, no material that emits, a "
+                     "black background): every pixel is black"
+                   : "no light that shines, ambient 0 and a black background: every pixel is "
+                     "black";
     return "";
 }
 

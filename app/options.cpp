@@ -163,10 +163,11 @@ static bool ParseProbe(char **v, Options *opt, std::string *error) {
     return true;
 }
 
-// --tolerance T: a number from 0 to 255.
+// --tolerance T: a number from 0 to 255. One too small to be anything but 0 (1e-400) is 0:
+// channel differences are whole numbers, so it counts the same pixels as 0 does.
 static bool ParseTolerance(const char *text, Options *opt, std::string *error) {
-    real t;
-    if (!ParseReal(text, &t, error) || !(t >= 0 && t <= 255)) {
+    real t = 0;
+    if (!TooSmallForNumber(text) && (!ParseReal(text, &t, error) || !(t >= 0 && t <= 255))) {
         *error = std::string("--tolerance must be a number from 0 to 255, not '") + text + "'";
         return false;
     }

@@ -14,6 +14,21 @@
 #include <cstdio>
 #include <cstdlib>
 
+// Whether the `#` at line[hash] is part of a number as old Windows programs printed NaN and
+// infinity (1.#QNAN, 1.#SNAN, -1.#IND, 1.#INF), not a comment: a digit or a point before it, and
+// Q, S or I after it.
+static bool WindowsSpecial(char before, char after) {
+    return (std::isdigit((unsigned char)before) || before == '.') &&
+           (after == 'Q' || after == 'S' || after == 'I');
+}
+
+size_t CommentStart(const std::string &line) {
+    for (size_t k = line.find('#'); k != std::string::npos; k = line.find('#', k + 1))
+        if (k == 0 || k + 1 == line.size() || !WindowsSpecial(line[k - 1], line[k + 1]))
+            return k;
+    return line.size();
+}
+
 // Whether byte c, just read, ends a line: LF, or CR, with the LF after it if there is one
 // (Windows' CR LF; a CR alone ends a line of a classic Mac OS file).
 static bool EndsLine(FILE *file, int c) {
@@ -33,14 +48,27 @@ LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::stri
     // thread's alone, and a lock and an append for every byte would cost more than the reading.)
     char kept[256];                 // (any size would do: this one holds a mesh's usual line whole)
     size_t waiting = 0, length = 0; // bytes in `kept`; bytes of the line so far
+    char last = 0;                  // the byte kept last
     while ((c = getc_unlocked(file)) != EOF && !EndsLine(file, c)) {
-        comment = comment || c == '#'; // a comment is dropped as it is read: any length will do
-        if (comment)
+        if (c == '#' && !comment) { // a comment, unless a Windows NaN (CommentStart)
+            int next = getc_unlocked(file);
+            comment = !WindowsSpecial(last, (char)next);
+            if (next != EOF)
+                ungetc(next, file);
+        }
+        if (comment) // a comment is dropped as it is read: any length will do
             continue;
         if (c == 0) {
-            *error = "a NUL byte: this is not a text file";
+            bool bom = lineNumber == 1 && length >= 2 && waiting >= 2 &&
+                       ((kept[0] == '\xFF' && kept[1] == '\xFE') ||
+                        (kept[0] == '\xFE' && kept[1] == '\xFF'));
+            *error = bom ? "UTF-16 text (the file begins with its byte-order mark): rt reads "
+                           "ASCII or UTF-8; save the file as UTF-8"
+                         : "a NUL byte: this is not a text file (or it is UTF-16, which has one "
+                           "in every other byte: save it as UTF-8)";
             return LINE_BAD;
         }
+        last = (char)c;
         tooLong = tooLong || length == kMaxLineLength; // then read on, keeping nothing
         if (tooLong)
             continue;
@@ -64,12 +92,10 @@ LineStatus ReadTextLine(FILE *file, int lineNumber, std::string *line, std::stri
     return LINE_READ;
 }
 
-// Splits a line into tokens at spaces and tabs, up to a `#`.
+// Splits a line into tokens at spaces and tabs, up to a comment's `#`.
 void Tokenize(const std::string &line, std::vector<std::string> *tokens) {
     tokens->clear();
-    size_t k = 0, end = line.find('#');
-    if (end == std::string::npos)
-        end = line.size();
+    size_t k = 0, end = CommentStart(line);
     while (k < end) {
         while (k < end && (line[k] == ' ' || line[k] == '\t'))
             k++;
@@ -261,7 +287,11 @@ template <typename T> static T Nearest(const std::string &token) {
 
 bool ParseReal(const std::string &token, real *value, std::string *error) {
     if (!LooksDecimal(token)) {
-        *error = "not a decimal number: " + Shown(token);
+        bool windows = token.find(".#") != std::string::npos;
+        *error = "not a decimal number: " + Shown(token) +
+                 (windows ? " (old Windows programs printed NaN and infinity so: the program "
+                            "that wrote it had no number to write)"
+                          : "");
         return false;
     }
     real v = Nearest<real>(token);
@@ -278,6 +308,10 @@ bool ParseReal(const std::string &token, real *value, std::string *error) {
     }
     *value = v;
     return true;
+}
+
+bool TooSmallForNumber(const std::string &token) {
+    return LooksDecimal(token) && Nearest<real>(token) == 0 && NonzeroDigits(token);
 }
 
 bool IsWholeNumber(const std::string &token) {

@@ -4,7 +4,8 @@
 // Here: boxes along a ray (the
 // window a triangle's hit lies in, which the BVH's boxes share); the plane's t and its error bound
 // (plane.cpp); the watertight inside test's shear (watertight.cpp); and how a ray leaves a surface
-// without hitting it again (OffsetRayOrigin, PassesOver, StartLeaving: geometry.cpp and path.cpp).
+// without hitting it again (OffsetRayOrigin, LeavingPoint: leave.cpp, PassesOver, StartLeaving:
+// geometry.cpp and path.cpp).
 #pragma once
 #include "../ray.h"
 
@@ -250,18 +251,18 @@ bool IntersectWatertight(const Triangle *tri, const TriangleSetUp *setUp, const 
 // ---- geometry.cpp and path.cpp: rays that leave a surface --------------------------------------
 
 // Self-intersection ("shadow acne") is prevented by one method for every ray that leaves a
-// surface (pbrt-v4 §6.8.6): the hit point is within pointError of the true surface, so moving
-// it along the normal by the error box's extent in that direction, sum |n_i| pointError_i, puts
-// it on the side the new ray goes to, whatever the scene's scale. Rounding the moved point
-// outward (NextAfter) keeps the addition itself from undoing the move. The new ray then uses
-// tMin = 0, and the intersectors' own "t above its rounding error" tests do the rest. (Inline:
-// every ray that leaves a surface starts here.)
-inline vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir) {
-    real distance = Dot(Abs(hit->normal), hit->pointError);
-    vec3 offset = distance * hit->normal;
-    if (Dot(dir, hit->normal) < 0)
+// surface (pbrt-v4 §6.8.6): a point within `error` (per axis) of the true surface, moved along
+// the unit normal by the error box's extent in that direction, sum |n_i| error_i, is on the side
+// the new ray goes to, whatever the scene's scale. Rounding the moved point outward (NextAfter)
+// keeps the addition itself from undoing the move. The new ray then uses tMin = 0, and the
+// intersectors' own "t above its rounding error" tests do the rest. (Inline: every ray that
+// leaves a surface starts here.)
+inline vec3 OffsetRayOrigin(vec3 point, vec3 error, vec3 normal, vec3 dir) {
+    real distance = Dot(Abs(normal), error);
+    vec3 offset = distance * normal;
+    if (Dot(dir, normal) < 0)
         offset = -offset;
-    vec3 moved = hit->point + offset;
+    vec3 moved = point + offset;
     real *coord[3] = {&moved.x, &moved.y, &moved.z};
     real push[3] = {offset.x, offset.y, offset.z};
     for (int i = 0; i < 3; i++) {
@@ -273,7 +274,18 @@ inline vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir) {
     return moved;
 }
 
-// Whether a ray in direction dir from a point that OffsetRayOrigin moved off triangle hit, to the
+// The hit point moved off its surface so (the hit's own point and error bound).
+inline vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir) {
+    return OffsetRayOrigin(hit->point, hit->pointError, hit->normal, dir);
+}
+
+// Where a ray that leaves `hit` in direction dir starts: the hit point moved off its surface
+// (OffsetRayOrigin), and for a triangle, where the hit lies too near an edge, a point moved in
+// from the edges first, so that the ray starts inside every closed mesh the triangle is part of
+// (leave.cpp). The triangle's corners are the scene's.
+vec3 LeavingPoint(const Scene *scene, const RayHit *hit, vec3 dir);
+
+// Whether a ray in direction dir from a point that LeavingPoint moved off triangle hit, to the
 // side `side` points to, goes so plainly away from it that the shape loop may pass over it. The
 // moved origin is on that side of the exact plane, or on it (OffsetRayOrigin's bound, which
 // holds while the normal is known to 2^-10: normalKnown). A ray going away from the plane on

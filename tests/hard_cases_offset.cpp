@@ -2,10 +2,19 @@
 // surface hits it again, at any distance from the origin and at any scale.
 #include "hard_cases_suite.h"
 
+// A scene of one triangle, for the shadow rays that leave it (ShadowRay reads its corners).
+static Scene OneTriangle(const Triangle &t) {
+    Scene scene;
+    InitScene(&scene);
+    scene.triangles.push_back(t);
+    return scene;
+}
+
 // Shadow rays from points on a triangle toward a light on the same side: none may hit it again.
 static int SelfShadowed(const Suite *s, const Triangle &ground, vec3 eye, vec3 light, int rays,
                         uint64_t seed) {
     SweepRng rng = {seed};
+    Scene scene = OneTriangle(ground);
     int acne = 0;
     for (int k = 0; k < rays; k++) {
         double b1 = 1.0 / 3 + (rng.Next() - 0.5) * 0.1, b2 = 1.0 / 3 + (rng.Next() - 0.5) * 0.1;
@@ -16,7 +25,8 @@ static int SelfShadowed(const Suite *s, const Triangle &ground, vec3 eye, vec3 l
             continue;
         Ray shadow;
         SelfHit start;
-        acne += ShadowRay(&hit, light, &kRobustMethods, &shadow, &start) &&
+        hit.index = 0;
+        acne += ShadowRay(&scene, &hit, light, &kRobustMethods, &shadow, &start) &&
                 s->triangle(&ground, &shadow, 0, 1, &hit);
     }
     return acne;
@@ -63,7 +73,9 @@ void OffsetRows(Suite *s) {
         bool found = s->triangle(&ground, &up, 0, kInfinity, &p);
         Ray shadow;
         SelfHit start;
-        found = found && ShadowRay(&p, light, &kRobustMethods, &shadow, &start);
+        Scene scene = OneTriangle(ground);
+        p.index = 0;
+        found = found && ShadowRay(&scene, &p, light, &kRobustMethods, &shadow, &start);
         bool ballShadows = found && s->sphere(&ball, &shadow, 0, 1, &blocker);
         bool sheetShadows = found && s->triangle(&sheet, &shadow, 0, 1, &blocker);
         Report(s, "OFF-3", ballShadows && sheetShadows,
@@ -85,7 +97,8 @@ void OffsetRows(Suite *s) {
                 Ray shadow;
                 SelfHit start;
                 rays++;
-                acne += ShadowRay(&hit, light, &kRobustMethods, &shadow, &start) &&
+                Scene scene; // (a sphere's ray leaves from its own point alone)
+                acne += ShadowRay(&scene, &hit, light, &kRobustMethods, &shadow, &start) &&
                         s->sphere(&ball, &shadow, 0, 1, &again);
             }
         Report(s, "OFF-4", acne == 0 && rays > 1000,

@@ -1,5 +1,7 @@
 // tests/robust_scenes.cpp -- the scenes of rt's robustness claims (robust_scenes.h).
 #include "robust_scenes.h"
+#include "../app/app.h"
+#include "../render.h"
 #include "../robust/robust.h"
 
 #include <cstdio>
@@ -112,7 +114,7 @@ BoxLeaks CountBoxLeaks(double length, bool turn, int rays, uint64_t seed) {
             continue;
         }
         vec3 r = ray.dir - (2 * Dot(ray.dir, hit.normal)) * hit.normal;
-        Ray mirror = {OffsetRayOrigin(&hit, r), r};
+        Ray mirror = {LeavingPoint(&box, &hit, r), r};
         if (!FindNearestHit(&box, kRobustMethods, &mirror, 0, kInfinity, &next))
             leaks.mirrorEscapes++;
         else if (next.index / 2 == hit.index / 2)
@@ -165,4 +167,104 @@ void AddOctasphere(Scene *scene, vec3 c, real r, int level) {
 double ClaimedBoxLength(int k) {
     const double lengths[] = {1e2, 1e8, 1e12}, floatLengths[] = {1e2, 1e3, 1e4};
     return sizeof(real) == sizeof(double) ? lengths[k] : floatLengths[k];
+}
+
+// ---- closed meshes seen from inside: the leak detector ----------------------------------------
+
+Scene LeakScene(bool mirrorWalls, vec3 eye, vec3 view, int size) {
+    Scene scene;
+    InitScene(&scene);
+    scene.width = scene.height = size;
+    scene.shading = mirrorWalls ? SHADING_FLOOR : SHADING_PATH;
+    scene.ambient = 0;
+    scene.background = {0, 1, 0};
+    scene.depth = 100;
+    Material wall = {"wall", {1, 1, 1}, {1, 1, 1}, 0, 1, mirrorWalls ? real(1) : real(0),
+                     0,      {0, 0, 0}};
+    Material glass = {"glass", {1, 1, 1}, {1, 1, 1}, 0, 1, 0, real(1.5), {0, 0, 0}};
+    scene.materials = {wall, glass};
+    scene.camera.kind = CAMERA_LOOKAT;
+    scene.camera.from = eye, scene.camera.to = eye + view, scene.camera.up = {0, 1, 0};
+    scene.camera.fovDegrees = 100;
+    return scene;
+}
+
+std::string TurnWords(double x, double y, double z) {
+    char words[160];
+    snprintf(words, sizeof words, "rotate x %.17g rotate y %.17g rotate z %.17g", x, y, z);
+    return words;
+}
+
+// The corners moved by the words, as the `mesh` statement moves an OBJ file's vertices.
+static bool MoveCorners(const std::string &words, vec3 *corners, int count) {
+    std::vector<std::string> tokens;
+    Tokenize(words, &tokens);
+    std::vector<MeshStep> steps;
+    std::string error;
+    if (!ParseMeshTransform(tokens, 0, &steps, &error))
+        return false;
+    for (int k = 0; k < count; k++)
+        corners[k] = TransformVertex(steps, corners[k]);
+    return true;
+}
+
+// Quads as `mesh` turns them into triangles: (p0, p1, p2) and (p0, p2, p3).
+static void AddQuads(Scene *scene, const vec3 *v, const int (*quads)[4], int count) {
+    for (int q = 0; q < count; q++) {
+        const int *f = quads[q];
+        scene->triangles.push_back({v[f[0]], v[f[1]], v[f[2]], 0});
+        scene->triangles.push_back({v[f[0]], v[f[2]], v[f[3]], 0});
+    }
+}
+
+bool AddMeshBox(Scene *scene, double w, double h, double l, const std::string &words) {
+    vec3 v[8];
+    for (int k = 0; k < 8; k++)
+        v[k] = {(real)((k & 4 ? 0.5 : -0.5) * w), (real)((k & 2 ? 0.5 : -0.5) * h),
+                (real)((k & 1 ? 0.5 : -0.5) * l)};
+    if (!MoveCorners(words, v, 8))
+        return false;
+    const int quads[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
+                             {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+    AddQuads(scene, v, quads, 6);
+    return true;
+}
+
+bool AddPrism(Scene *scene, double degrees, double l, const std::string &words) {
+    double half = degrees / 2 * 3.14159265358979323846 / 180;
+    double x = 10 * std::cos(half), y = 10 * std::sin(half), cx = 2 * x / 3; // centroid at cx
+    vec3 v[6];
+    for (int k = 0; k < 6; k++) {
+        double px[3] = {-cx, x - cx, x - cx}, py[3] = {0, y, -y};
+        v[k] = {(real)px[k % 3], (real)py[k % 3], (real)(k < 3 ? -l / 2 : l / 2)};
+    }
+    if (!MoveCorners(words, v, 6))
+        return false;
+    scene->triangles.push_back({v[0], v[2], v[1], 0});
+    scene->triangles.push_back({v[3], v[4], v[5], 0});
+    const int quads[3][4] = {{0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}};
+    AddQuads(scene, v, quads, 3);
+    return true;
+}
+
+int PixelsThatSeeOut(const Scene *scene, int seed) {
+    RenderSettings settings = {scene->width,
+                               scene->height,
+                               1,
+                               SAMPLES_GRID,
+                               scene->depth,
+                               1,
+                               kRobustMethods,
+                               nullptr,
+                               {},
+                               {},
+                               {}};
+    settings.path.seed = seed;
+    Image image;
+    RayStats stats = {};
+    Render(scene, &settings, &image, &stats);
+    int green = 0;
+    for (size_t p = 0; p < image.pixels.size(); p += 3)
+        green += image.pixels[p + 1] > 0;
+    return green;
 }

@@ -50,4 +50,28 @@ Scene TransformedScene(const Scene &original, real scale, vec3 shift);
 // their order in the scene.
 void AddOctasphere(Scene *scene, vec3 c, real r, int level);
 
+// ---- closed meshes seen from inside: the leak detector ----------------------------------------
+
+// A camera at `eye` looking along `view` (lookat, 100 degrees), size x size pixels, a green
+// background, ambient 0, 100 rays a chain; material 0, "wall": white diffuse under
+// `shading path` (no lamp: no light at all), or a perfect mirror under `shading floor`; material
+// 1, glass of index 1.5. Inside a closed mesh of walls every pixel is black; a pixel with green
+// in it is a ray that got out.
+Scene LeakScene(bool mirrorWalls, vec3 eye, vec3 view, int size);
+
+// "rotate x X rotate y Y rotate z Z", the angles in degrees, to 17 digits.
+std::string TurnWords(double x, double y, double z);
+
+// The box [-w/2, w/2] x [-h/2, h/2] x [-l/2, l/2] as `mesh` makes it from an OBJ file of its 8
+// corners (x, then y, then z) and 6 quads, each a fan of two triangles, moved by the transform
+// words (as after `mesh FILE MATERIAL`); false where the words are refused.
+bool AddMeshBox(Scene *scene, double w, double h, double l, const std::string &words);
+
+// A prism of length l along z whose cross-section is a triangle with a corner of `degrees` and
+// two sides of 10 from it, its centroid at the origin, then moved by the words; 8 triangles.
+bool AddPrism(Scene *scene, double degrees, double l, const std::string &words);
+
+// The pixels with any green in the scene's image at one sample (seed: the path tracer's).
+int PixelsThatSeeOut(const Scene *scene, int seed);
+
 #endif

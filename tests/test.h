@@ -105,5 +105,6 @@ void TestPacket();
 void TestPath();
 void TestMesh();
 void TestMeshRays();
+void TestLeaks();
 
 #endif

@@ -96,6 +96,35 @@ static void TestComparePpm(const std::string &dir) {
                   ")");
 }
 
+// --compare names the pixels that differ most, so that `--pixel X Y` can be asked about them:
+// three pixels changed by hand in a 4 x 3 plain PPM, by 9, 200 and 9 levels.
+static void TestWorstPixels(const std::string &dir) {
+    std::string err, grey = "P3 4 3 255\n";
+    for (int k = 0; k < 12; k++)
+        grey += "100 100 100\n";
+    std::string changed = grey;
+    auto set = [&changed](int x, int y, const char *rgb) {
+        size_t at = 11 + (size_t)(4 * y + x) * 12; // each pixel's line is 12 characters
+        changed.replace(at, 11, rgb);
+    };
+    set(3, 0, "100 109 100"), set(1, 2, "100 100 300"), set(0, 1, "091 100 100");
+    changed.replace(changed.find("300"), 3, "255"); // (200 levels, written in range)
+    std::ofstream(dir + "/grey.ppm") << grey;
+    std::ofstream(dir + "/changed.ppm") << changed;
+    int status = RunRay(dir, "--compare grey.ppm changed.ppm --tolerance 2", &err);
+    std::string out = ReadOutput(dir);
+    CHECK(status == 1 && out.find("pixels over tolerance 2: 3 of 12\n"
+                                  "worst pixels (x y: first image, second image):\n"
+                                  "  1 2: 100 100 100, 100 100 255\n"
+                                  "  3 0: 100 100 100, 100 109 100\n"
+                                  "  0 1: 100 100 100, 91 100 100\n") != std::string::npos,
+          "--compare lists the worst pixels, largest first, then in reading order (" + out + ")");
+    CHECK(RunRay(dir, "--compare grey.ppm changed.ppm --tolerance 9", &err) == 1 &&
+              ReadOutput(dir).find("  1 2: 100 100 100, 100 100 255\n") != std::string::npos &&
+              ReadOutput(dir).find("  3 0") == std::string::npos,
+          "--compare lists only pixels over the tolerance");
+}
+
 void TestCompare(const std::string &dir) {
     std::string err;
     RunRay(dir, "--size 32 -o a.png", &err);
@@ -109,6 +138,9 @@ void TestCompare(const std::string &dir) {
     CHECK(RunRay(dir, "--compare a.png b.png --tolerance 255", &err) == 0,
           "--compare within tolerance 255: exit 0");
     CHECK(RunRay(dir, "--compare a.png nothere.png", &err) == 2, "--compare of a missing file: 2");
+    CHECK(RunRay(dir, "--compare a.png b.png --tolerance 1e-400", &err) == 1 &&
+              ReadOutput(dir).find("pixels over tolerance 0: ") != std::string::npos,
+          "--tolerance 1e-400, too small to be anything but 0, counts as 0 (" + err + ")");
     // A 16-bit PNG without gAMA or sRGB (one pixel of 200, 100 and 50 times 257: IHDR bit depth
     // 16, colour type 2; IDAT the filter byte 0 and the six bytes c8 c8 64 64 32 32, deflated)
     // reads as the 8-bit pixel of the same colours, not as linear light re-encoded
@@ -126,4 +158,5 @@ void TestCompare(const std::string &dir) {
               sixteen.pixels[1] == 100 && sixteen.pixels[2] == 50,
           "a 16-bit PNG of (200, 100, 50) x 257 reads as the 8-bit (200, 100, 50)");
     TestComparePpm(dir);
+    TestWorstPixels(dir);
 }

@@ -114,6 +114,58 @@ static void TestPlannedEffects() {
     CHECK(EffectWords(&scene, s) == "none", "a mirror material no shape uses plans no reflection");
 }
 
+// Shadow rays only where a light could change a pixel: a light of intensity 0, a black surface
+// under `floor` or `phong`, an ambient floor no light can rise above. Each scene rendered: its
+// shadow rays counted, and its image the same as with the lights taken out (or, for the scenes
+// one step away, not).
+static void TestLightsThatChangeNothing() {
+    struct Case {
+        const char *text, *why;
+        bool shadows; // the prediction: shadow rays cast, and the image differs without lights
+    };
+    const char *shapes = "material w diffuse 1 1 1\nmaterial black diffuse 0 0 0\n"
+                         "sphere 0 0 -5 1 %s\ntriangle -9 -1 -1 9 -1 -1 0 -1 -20 %s\n";
+    const Case cases[] = {
+        {"ambient 0\nlight 0 5 0 0 0 0\n", "a light of intensity 0", false},
+        {"ambient 0.2\nlight 0 5 0 0 0 0\nlight 5 5 0 0 0 0\n", "two lights of intensity 0", false},
+        {"ambient 1\nlight 0 5 0 1 1 1\n", "ambient 1 under floor, a light of 1", false},
+        {"ambient 0.6\nlight 0 5 0 0.3 0.3 0.3\nlight 5 5 0 0.3 0.3 0.3\n",
+         "ambient 0.6 under floor, two lights of 0.3", false},
+        {"ambient 0.2\nlight 0 5 0 1 1 1\n#black\n", "black shapes under floor", false},
+        {"shading phong\nlight 0 5 0 1 1 1\n#black\n", "black shapes under phong", false},
+        {"ambient 0.2\nlight 0 5 0 1 1 1\n", "one step away: a light of 1, ambient 0.2", true},
+        {"ambient 0.99\nlight 0 5 0 1 1 1\n", "one step away: ambient 0.99 under a light of 1",
+         true},
+        {"ambient 0\nlight 0 5 0 0 0 0.01\n", "one step away: a faint blue light, ambient 0", true},
+    };
+    for (const Case &c : cases) {
+        std::string text = c.text;
+        const char *material = text.find("#black") != std::string::npos ? "black" : "w";
+        char body[200];
+        snprintf(body, sizeof body, shapes, material, material);
+        Scene scene, dark;
+        std::string error;
+        bool read = ParseSceneText("size 32 32\n" + text + body, "l.scene", &scene, &error);
+        CHECK(read, std::string(c.why) + ": the scene reads (" + error + ")");
+        if (!read)
+            continue;
+        dark = scene;
+        dark.lights.clear();
+        Image images[2];
+        RayStats stats[2] = {};
+        for (int k = 0; k < 2; k++) {
+            RenderSettings s = TestSettings(k ? &dark : &scene);
+            Render(k ? &dark : &scene, &s, &images[k], &stats[k]);
+        }
+        bool differs = images[0].pixels != images[1].pixels;
+        CHECK((stats[0].shadow > 0) == c.shadows && differs == c.shadows,
+              std::string(c.why) + ": " + std::to_string(stats[0].shadow) +
+                  " shadow rays, and the image " + (differs ? "differs from" : "is") +
+                  " the one without lights (predicted: " +
+                  (c.shadows ? "rays, and a different image" : "none, and the same image") + ")");
+    }
+}
+
 // A glass sphere (ior 1.5, radius 1, at the origin) and nothing else; traces one ray and returns
 // its ray tree.
 static std::vector<RayNode> GlassTree(vec3 origin, vec3 dir) {
@@ -252,6 +304,9 @@ static void TestOneColour() {
     const Case cases[] = {
         {"size 8 8\nbackground 0.2 0.4 0.6\n", "no shapes", {51, 102, 153}},
         {"size 8 8\nambient 0\nmaterial m\nsphere 0 0 -5 1 m\n", "every pixel is black", {0, 0, 0}},
+        {"size 8 8\nambient 0\nlight 0 5 0 0 0 0\nmaterial m\nsphere 0 0 -5 1 m\n",
+         "every pixel is black",
+         {0, 0, 0}},
         {"size 8 8\nambient 0\nmaterial m mirror 1\nsphere 0 0 -5 1 m\n",
          "every pixel is black",
          {0, 0, 0}},
@@ -292,6 +347,7 @@ void TestEffects() {
     TestOneColour();
     TestRayCounts();
     TestPlannedEffects();
+    TestLightsThatChangeNothing();
     TestGlass();
     TestPhong();
 }

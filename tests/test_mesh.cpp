@@ -21,7 +21,7 @@ static bool ReadObjText(const std::string &text, const std::vector<MeshStep> &st
     if (!file)
         return false;
     triangles->clear();
-    bool read = ReadObj(file, "m.obj", 0, steps, maxTriangles, triangles, error);
+    bool read = ReadObj(file, "m.obj", 0, steps, maxTriangles, "m.scene:1", triangles, error);
     fclose(file);
     return read;
 }
@@ -129,6 +129,19 @@ static void TestObjErrors() {
          "begin 'V' or 'F' were skipped"},
         {three, 3, "no faces"},
         {three + std::string("v 1 1\0 0\n", 9), 4, "NUL byte"},
+        // what old Windows exporters write for NaN and infinity: a number refused as one, with
+        // why, not a comment cutting the line short ("found 1 number")
+        {"v 1.#QNAN 1 0\n", 1, "v: not a decimal number: '1.#QNAN' (old Windows programs"},
+        {"v 1 -1.#IND 0\n", 1, "'-1.#IND' (old Windows"},
+        {"v 1 1 1.#INF\n", 1, "'1.#INF' (old Windows"},
+        // a line continued with a backslash: said so, not "bad corner '\'"
+        {three + "f 1 2 \\\n 3\n", 4,
+         "a line that ends in '\\' goes on in the next one in some "
+         "OBJ files; rt does not join lines"},
+        {std::string("\xFF\xFEv\0 \0", 6), 1,
+         "UTF-16 text (the file begins with its byte-order "
+         "mark): rt reads ASCII or UTF-8"},
+        {std::string("v\0 \0", 4), 1, "NUL byte: this is not a text file (or it is UTF-16"},
     };
     for (const BadObj &bad : cases) {
         std::vector<Triangle> triangles;
@@ -149,8 +162,11 @@ static void TestObjErrors() {
     std::vector<Triangle> triangles;
     std::string error;
     bool read = ReadObjText(three + "v 1 1 0\nf 1 2 3 4\nf 1 2 3\n", {}, &triangles, &error, 2);
-    CHECK(!read && error.rfind("m.obj:6: too many triangles", 0) == 0,
-          "a third triangle beyond a limit of 2: refused at line 6 (got: " + error + ")");
+    CHECK(!read && error == "m.obj:6: too many triangles: with the mesh statement at m.scene:1, "
+                            "rt's limit of shapes in a scene is reached",
+          "a third triangle beyond a limit of 2: refused at line 6, the mesh statement named "
+          "(got: " +
+              error + ")");
     // The limit counts this mesh's triangles, not those already in the scene: after 3 triangles
     // of an earlier mesh, 2 more are allowed (a quad), and a third is refused
     for (bool third : {false, true}) {
@@ -159,7 +175,7 @@ static void TestObjErrors() {
         if (!file)
             continue;
         std::vector<Triangle> scene(3, Triangle{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0});
-        read = ReadObj(file, "m.obj", 0, {}, 2, &scene, &error);
+        read = ReadObj(file, "m.obj", 0, {}, 2, "m.scene:1", &scene, &error);
         fclose(file);
         CHECK(third ? !read && error.rfind("m.obj:6: too many triangles", 0) == 0
                     : read && scene.size() == 5,
@@ -246,7 +262,9 @@ static void TestTransformOverflow() {
     std::string error;
     bool parsed = ParseMeshTransform(tokens, 0, &steps, &error);
     CHECK(parsed && !ReadObjText(text, steps, &triangles, &error) &&
-              error.rfind("m.obj:1: v: the transform words move this vertex beyond", 0) == 0,
+              error.rfind("m.obj:1: v: the transform words of the mesh statement at m.scene:1 move "
+                          "this vertex beyond",
+                          0) == 0,
           "a vertex scaled beyond the largest number: refused at its line (" + error + ")");
     steps[0].factor = 1;
     CHECK(ReadObjText(text, steps, &triangles, &error), "the same vertex unscaled reads");

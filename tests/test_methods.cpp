@@ -189,7 +189,7 @@ static void TestSkipPassesOverOneShape() {
         from.normal = {0, 0, 1}, from.pointError = {0, 0, 0};
         Ray ray;
         SelfHit start;
-        LeaveSurface(&from, {0, 0, -1}, &skip, &ray, &start);
+        LeaveSurface(&one, &from, {0, 0, -1}, &skip, &ray, &start);
         RayHit hit;
         bool found = FindNearestHitFrom(&one, skip, &ray, &start, kInfinity, &hit);
         CHECK(found && hit.shape == kind && hit.index == 0 && hit.t > 7,

@@ -3,6 +3,11 @@
 #include "../app/app.h"
 #include "test.h"
 
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cstdlib>
 #include <cstring>
 
@@ -227,7 +232,52 @@ static void TestCompare() {
     CHECK(!CompareImages(&a, &c, 0, &d, &heat), "compare: different sizes are refused");
 }
 
+// One line of the program's standard output, waiting at most `seconds` for it; "" if none came.
+static std::string ReadLineWithin(int fd, double seconds) {
+    std::string line;
+    char c;
+    while (line.empty() || line.back() != '\n') {
+        pollfd p = {fd, POLLIN, 0};
+        if (poll(&p, 1, (int)(seconds * 1000)) <= 0 || read(fd, &c, 1) != 1)
+            return "";
+        line += c;
+    }
+    return line;
+}
+
+// `--rays -` as a conversation: a program writes one probe line into a pipe and waits for its
+// answer before it writes the next. Each answer must come while the input is still open.
+static void TestProbeConversation() {
+    int in[2], out[2];
+    CHECK(pipe(in) == 0 && pipe(out) == 0, "two pipes for a conversation with ray");
+    pid_t child = fork();
+    if (child == 0) {
+        dup2(in[0], 0), dup2(out[1], 1);
+        close(in[1]), close(out[0]);
+        std::string program = RayProgram();
+        execl(program.c_str(), program.c_str(), "--rays", "-", (char *)nullptr);
+        _exit(127);
+    }
+    close(in[0]), close(out[1]);
+    std::string answers[2];
+    const char *probes[2] = {"0 0 0 0 0 -1\n", "0 0 0 0 1 0\n"};
+    for (int k = 0; k < 2 && (k == 0 || !answers[0].empty()); k++) {
+        bool written = write(in[1], probes[k], strlen(probes[k])) == (ssize_t)strlen(probes[k]);
+        answers[k] = written ? ReadLineWithin(out[0], 10) : "";
+    }
+    close(in[1]);
+    int status = 0;
+    if (answers[0].empty())
+        kill(child, SIGKILL);
+    waitpid(child, &status, 0);
+    close(out[0]);
+    CHECK(answers[0].find("\"t\":14") != std::string::npos && answers[1] == "{\"hit\":false}\n",
+          "--rays - answers each line as it is read, before its input ends (got '" + answers[0] +
+              "' and '" + answers[1] + "')");
+}
+
 void TestProbes() {
+    TestProbeConversation();
     TestProbeRays();
     TestProbeNames();
     TestProbeLines();

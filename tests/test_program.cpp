@@ -306,8 +306,9 @@ static void TestHiddenWarnings(const std::string &dir) {
     // without one
     std::ofstream(dir + "/dark.scene") << "size 8 8\nshading path\nmaterial m\nsphere 0 0 -5 1 m\n";
     CHECK(RunRay(dir, "dark.scene -o d.png", &err) == 0 &&
-              err == "ray: warning: nothing gives off light (no light, no material that emits, a "
-                     "black background): every pixel is black\n" &&
+              err ==
+                  "ray: warning: nothing gives off light (no light that shines, no material that "
+                  "emits, a black background): every pixel is black\n" &&
               RunRay(dir, "dark.scene --ray 0 0 0 0 0 -1", &err) == 0 && err.empty() &&
               RunRay(dir, "dark.scene --view normal -o n.png", &err) == 0 && err.empty(),
           "a scene where nothing gives light: rendered with one warning, probed and viewed "
