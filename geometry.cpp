@@ -1,4 +1,4 @@
-// geometry.cpp -- where rays meet shapes, and nothing else.
+// geometry.cpp -- where rays meet shapes, and how a ray leaves one.
 //
 // Read top to bottom: the assignment slide's sphere, then the same quadratic made stable (rt's
 // IntersectSphere, each changed line marked with the slide's); Cramer's rule with the slide's

@@ -130,13 +130,7 @@ static color JournalRay(Path *path, const Ray *ray, RayKind kind, bool found, co
     log->current = node;
     color result = JournalShade(path, ray, found, hit, number);
     log->current = parent;
-    if (node >= 0) {
-        RayNode *n = &(*log->tree)[node];
-        n->hit = found;
-        if (found)
-            n->record = *hit;
-        n->light = result;
-    }
+    CloseRay(log, node, found, hit, result);
     return result;
 }
 

@@ -44,8 +44,8 @@ enum SampleMethod {
 
 // Adaptive sampling refines a pixel when its first five samples (centre and corners) differ by
 // more than this in a channel (0..1), or their rays met different shapes. At edges the shapes
-// decide, so a finer contrast buys no accuracy there (docs/accuracy-and-time.md): a sixteenth,
-// a step a viewer sees in a smooth gradient, casts the fewest rays.
+// decide, so a finer contrast would only refine smooth gradients: a sixteenth is a step a viewer
+// sees in one.
 const real kAdaptiveContrast = real(1) / 16;
 
 // How `shading path` estimates the light a diffuse surface scatters (path.cpp), each choice
@@ -190,6 +190,10 @@ inline void CountRay(RayKind kind, RayStats *stats) {
 // Adds a node for a ray of this kind to log->tree, if a tree is being recorded, with
 // log->current as its parent (returns the node's index, or -1).
 int RecordRay(RayKind kind, const Ray *ray, TraceLog *log);
+
+// Fills in node `node` of the tree (if it is one: >= 0) once its ray's answer is known: what it
+// found, and the light it brings back. (By index: the tree may have moved while it grew.)
+void CloseRay(TraceLog *log, int node, bool found, const RayHit *hit, color light);
 
 // The mirror direction of d about the unit normal n: r = d - 2 (d.n) n (the assignment handout)
 inline vec3 Reflect(vec3 d, vec3 n) { return d - (2 * Dot(d, n)) * n; }

@@ -3,7 +3,8 @@
 // The assignment handout's diffuse shading with an ambient floor, hard shadows and mirrors; the
 // second handout's Phong lighting; the journal's refraction by Snell's law with Fresnel
 // weighting. At most `depth` rays in a chain (then black), the background on a miss. Every ray
-// asks the scene one of two questions of geometry.cpp: FindNearestHitFrom or AnyHitFrom. Last,
+// asks the scene one of two questions of geometry.cpp: FindNearestHitFrom or AnyHitFrom (eye rays
+// at more than one sample a pixel, FindEyeRayHits, the first question for several at once). Last,
 // what a render decides once, so that it casts no ray it cannot use: the effects a scene calls
 // for, and the shapes that emit (path tracing's lamps).
 #include "ray.h"
@@ -22,6 +23,16 @@ int RecordRay(RayKind kind, const Ray *ray, TraceLog *log) {
     RayNode node = {kind, *ray, false, {}, {0, 0, 0}, log->current};
     log->tree->push_back(node);
     return (int)log->tree->size() - 1;
+}
+
+void CloseRay(TraceLog *log, int node, bool found, const RayHit *hit, color light) {
+    if (node < 0)
+        return;
+    RayNode *n = &(*log->tree)[node];
+    n->hit = found;
+    if (found)
+        n->record = *hit;
+    n->light = light;
 }
 
 // What every shading function needs besides the surface: the world, how it is rendered, and
@@ -260,13 +271,7 @@ static color ShadeFound(const Scene *scene, const RenderSettings *settings, RayK
         result = ShadeHit(&sh, &surface);
         log->current = parent;
     }
-    if (node >= 0) { // the tree may have grown (and moved) during the recursion
-        RayNode *n = &(*log->tree)[node];
-        n->hit = found;
-        if (found)
-            n->record = *hit;
-        n->light = result;
-    }
+    CloseRay(log, node, found, hit, result);
     return result;
 }
 

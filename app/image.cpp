@@ -22,9 +22,8 @@
 #include <unistd.h>
 
 // Compression: PNG_IMAGE_FLAG_FAST (no row filters, zlib level 3 in libpng 1.6) instead of the
-// default (adaptive filters, zlib level 6): the default costs about as much as a whole render of
-// the assignment image (docs/speed.md), the fast setting a fraction of it, and flat colours still
-// compress well.
+// default (adaptive filters, zlib level 6): the default's search for the best filter can cost as
+// much as rendering a small scene, and a rendered image's flat colours compress well without it.
 static const png_uint_32 kPngFlags = PNG_IMAGE_FLAG_FAST;
 
 // The image as PNG on an open file. Where the file could not be written, the system's reason (a

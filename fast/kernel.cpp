@@ -231,8 +231,8 @@ bool SearchLayout(const Accelerator *self, const Scene *scene, Methods methods, 
 // Whether a packet costs less than its rays one by one. A packet tests each shape once for all
 // its rays, where one ray tests a block of kLanes shapes at once, and a packet's test of one
 // shape costs a little more than one ray's test of a block; what the packet saves is each ray's
-// own set-up and the blocks' empty lanes, which matter in small scenes only (docs/speed.md
-// measures where it stops paying). A packet of one ray is one ray's search with more bookkeeping.
+// own set-up and the blocks' empty lanes, which matter in small scenes only. A packet of one ray is
+// one ray's search with more bookkeeping.
 const size_t kPacketShapes = 64;
 static bool PacketPays(const SceneLayout *layout, int count) {
     return count >= 2 && layout->vectors && layout->nodes.empty() &&
