@@ -295,7 +295,7 @@ static RT_INLINE bool PlaceBins(const NodeBounds *node, Bins *bins) {
     return spread;
 }
 
-// SplitNode (layout.h), compiled twice: with AVX2 a box is two vectors, not four halves.
+// SplitNode (fast.h), compiled twice: with AVX2 a box is two vectors, not four halves.
 static RT_INLINE int SplitItems(BuildItem *items, int begin, int end, const NodeBounds *node,
                                 bool heuristic, NodeBounds side[2]) {
     int n = end - begin;
@@ -340,7 +340,7 @@ int SplitNode(BuildItem *items, int begin, int end, const NodeBounds *node, bool
     return (vectors ? SplitVectors : SplitPlain)(items, begin, end, node, heuristic, side);
 }
 
-// MakeBuildItems (layout.h), compiled twice. The box is TriangleBox's, lane by lane: its least and
+// MakeBuildItems (fast.h), compiled twice. The box is TriangleBox's, lane by lane: its least and
 // most of three in its order (so that of -0 and +0 the same one wins), and for a triangle with a
 // corner that is not finite the infinite box; the centre is lo / 2 + hi / 2, halves first, as
 // (lo + hi) / 2 could overflow, and 0 for the infinite box.

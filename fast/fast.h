@@ -4,7 +4,7 @@
 // main commits the scene once per render (CommitScene, commit.cpp, after Embree's
 // rtcCommitScene): the triangles and spheres copied into blocks, coordinate by coordinate, and
 // for a scene large enough that it pays, a bounding volume hierarchy over the triangles (build.cpp
-// finds the splits). The search (search.cpp) tests a block of shapes at a time (kernel.cpp and its
+// finds the splits). The search (kernel.cpp) tests a block of shapes at a time (with its
 // parts: kernel_blocks.h, kernel_spheres.h, kernel_walk.h), and a pixel's eye rays together
 // (kernel_packet.h), with GCC/clang vector extensions where the processor has AVX2 (one binary
 // picks at run time) and lane by lane elsewhere, with the same answers.
@@ -70,7 +70,7 @@ struct SceneLayout {
     SceneLayout &operator=(const SceneLayout &) = delete;
 };
 
-// ---- commit.cpp, search.cpp and kernel.cpp: committing a scene, and searching it -------------
+// ---- commit.cpp and kernel.cpp: committing a scene, and searching it -----------------------
 
 // Builds *layout from the scene's triangles and spheres (see SceneLayout), once per render after
 // the scene is complete, and installs its accelerator in scene->accelerator; LAYOUT_PLAIN builds
@@ -83,7 +83,7 @@ void CommitScene(Scene *scene, LayoutChoice choice, int threads, SceneLayout *la
 // the blocks are tested.
 std::string DescribeLayout(const Scene *scene, const SceneLayout *layout, double buildSeconds);
 
-// The accelerator's two functions (search.cpp), as Accelerator declares them.
+// The accelerator's two functions (kernel.cpp), as Accelerator declares them.
 bool SearchLayout(const Accelerator *self, const Scene *scene, Methods methods, const Ray *ray,
                   const SelfHit *from, real tMax, bool anyHit, RayHit *hit);
 void SearchEyeRays(const Accelerator *self, const Scene *scene, Methods methods, const Ray *rays,

@@ -1,7 +1,7 @@
 // tests/test_packet.cpp -- a packet of rays from the eye answers what each ray alone answers.
 //
 // A pixel's samples are searched for together (FindEyeRayHits, where the accelerator takes them
-// as packets, fast/search.cpp): up to kLanes rays in the lanes of the kernel, one shape at a time
+// as packets, fast/kernel.cpp): up to kLanes rays in the lanes of the kernel, one shape at a time
 // (fast/kernel_packet.h). Each ray must get the very bits the plain loop gives it alone: the same
 // t, point, normal, error bound and shape, ties included. The checks ask each packet three ways
 // (the packet kernel itself, FindEyeRayHits, and each ray alone in the scene as written) and
