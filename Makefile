@@ -3,13 +3,32 @@
 # `make bench-publish` copies a run into docs/bench/); `make sanitize` runs the tests under
 # AddressSanitizer and UndefinedBehaviorSanitizer; `make clean` removes every product.
 
+# Parallel by default: one job a core, unless -j was given. (GNU make 4; the make 3.81 of macOS
+# takes `make -j4` instead.)
+JOBS := $(shell getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)
+ifeq ($(filter -j%,$(MAKEFLAGS)),)
+MAKEFLAGS += -j$(JOBS)
+endif
+
 CXX ?= g++
-CXXFLAGS ?= -O3 -g
+# (No -g: debug information takes a third of the build's time. For a debugger,
+# `make CXXFLAGS="-O0 -g"`; build/config then rebuilds everything.)
+CXXFLAGS ?= -O3
 # Required flags, kept apart so CXXFLAGS stays the user's. -ffp-contract=off: a fused
 # multiply-add changes how a*b - c*d rounds, which breaks the watertight triangle test (and makes
 # images differ between machines); rt wants the arithmetic exactly as written.
 RT_FLAGS = -std=c++17 -Wall -Wextra -ffp-contract=off -fno-math-errno -pthread -MMD -MP
+# `make RT_SCALAR=1`: fast/'s kernels as plain scalar code, no vector extensions (fast/lanes.h).
+ifneq ($(RT_SCALAR),)
+RT_FLAGS += -DRT_SCALAR
+endif
 
+# What every product was built with; when it changes (another CXX, CXXFLAGS or RT_SCALAR),
+# build/config changes, and everything is built again.
+CONFIG = $(CXX) $(CXXFLAGS) $(RT_FLAGS)
+$(shell mkdir -p build && echo '$(CONFIG)' | cmp -s - build/config || echo '$(CONFIG)' >build/config)
+
+# (A cross-build points pkg-config at the target's libraries with PKG_CONFIG_LIBDIR: .ci/run.)
 PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
 PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 
@@ -39,11 +58,11 @@ ray: build/double/ray.o $(DOUBLE_CORE)
 ray_float: build/float/ray.o $(FLOAT_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
-build/double/%.o: %.cpp
+build/double/%.o: %.cpp build/config
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) $(PNG_CFLAGS) -I. -c -o $@ $<
 
-build/float/%.o: %.cpp
+build/float/%.o: %.cpp build/config
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) $(PNG_CFLAGS) -DRT_FLOAT -I. -c -o $@ $<
 
@@ -63,7 +82,7 @@ check: test
 # that run the program run the sanitized one.
 SAN_FLAGS = -O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 
-build/sanitize/%.o: %.cpp
+build/sanitize/%.o: %.cpp build/config
 	@mkdir -p $(@D)
 	$(CXX) $(SAN_FLAGS) $(RT_FLAGS) $(PNG_CFLAGS) -I. -c -o $@ $<
 
@@ -83,7 +102,7 @@ FUZZ_CXX = clang++
 FUZZ_FLAGS = -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all
 FUZZ_SECONDS ?= 600
 
-build/fuzz/%.o: %.cpp
+build/fuzz/%.o: %.cpp build/config
 	@mkdir -p $(@D)
 	$(FUZZ_CXX) $(FUZZ_FLAGS) -fsanitize=fuzzer-no-link $(RT_FLAGS) $(PNG_CFLAGS) -I. -c -o $@ $<
 

@@ -110,9 +110,10 @@ static int Run(int argc, char **argv) {
         return 2;
     }
     if (opt.help || opt.version) {
-        fputs(opt.help ? kUsage : kVersion, stdout);
-        if (!opt.help)
-            fputc('\n', stdout);
+        if (opt.help)
+            fputs(kUsage, stdout);
+        else // (the kernels: which form of fast/'s search this build and processor run)
+            printf("%s\nkernels: %s\n", kVersion, KernelName());
         return 0;
     }
     if (opt.compare)

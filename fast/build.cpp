@@ -9,6 +9,7 @@
 // (the kernel's dispatch) one vector is one instruction: min, max and comparison are exact, so
 // every box has the bits of TriangleBox's, and the tree is the same on any machine.
 #include "fast.h"
+#include "lanes.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -24,15 +25,9 @@ const int kMaxLeafBlocks = 4;
 
 // Four numbers at once: x, y, z and a fourth lane that is not used (Bounds, BuildItem). Vectors
 // are passed by pointer, as in kernel_blocks.h: a 32-byte vector is passed differently with AVX.
-typedef real Quad4 __attribute__((vector_size(4 * sizeof(real))));
-typedef int Int4 __attribute__((vector_size(16)));
-typedef unsigned UInt4 __attribute__((vector_size(16)));
-
-#if defined(__x86_64__) && defined(__GNUC__)
-#define RT_AVX2 __attribute__((target("avx2")))
-#else
-#define RT_AVX2
-#endif
+RT_LANES(Quad4, real, 4);
+RT_LANES(Int4, int, 4);
+RT_LANES(UInt4, unsigned, 4);
 
 static RT_INLINE void Load(Quad4 *v, const real *p) { memcpy(v, p, sizeof *v); }
 static RT_INLINE void Store(real *p, const Quad4 *v) { memcpy(p, v, sizeof *v); }
@@ -49,7 +44,7 @@ static RT_INLINE Bounds EmptyBounds() {
 static RT_INLINE void GrowBy(Bounds *b, const Quad4 *otherLo, const Quad4 *otherHi) {
     Quad4 lo, hi;
     Load(&lo, b->lo), Load(&hi, b->hi);
-    lo = *otherLo < lo ? *otherLo : lo, hi = *otherHi > hi ? *otherHi : hi;
+    lo = Select(*otherLo < lo, *otherLo, lo), hi = Select(*otherHi > hi, *otherHi, hi);
     Store(b->lo, &lo), Store(b->hi, &hi);
 }
 static RT_INLINE void Grow(Bounds *b, const Bounds *other) {
@@ -69,7 +64,7 @@ static RT_INLINE void GrowPoint(Bounds *b, const Quad4 *point) { GrowBy(b, point
 static RT_INLINE real RawHalfArea(const Bounds *b) {
     Quad4 lo, hi;
     Load(&lo, b->lo), Load(&hi, b->hi);
-    Quad4 d = hi - lo, p = d * __builtin_shufflevector(d, d, 1, 2, 0, 3);
+    Quad4 d = hi - lo, p = d * Quad4{d[1], d[2], d[0], d[3]};
     return p[0] + p[1] + p[2]; // d[0] * d[1] + d[1] * d[2] + d[2] * d[0]
 }
 static RT_INLINE real HalfArea(const Bounds *b) {
@@ -90,7 +85,7 @@ static RT_INLINE void LoadCentre(const BuildItem *item, Quad4 *c) {
     typedef decltype(*c < *c) Mask4;
     Mask4 keep = {-1, -1, -1, 0};
     Load(c, item->centre);
-    *c = (Quad4)((Mask4)*c & keep);
+    *c = Bitcast<Quad4>(Bitcast<Mask4>(*c) & keep);
 }
 static RT_INLINE void GrowCentre(Bounds *b, const BuildItem *item) {
     Quad4 c;
@@ -123,7 +118,7 @@ static RT_INLINE UInt4 BinsOf(const BuildItem *item, const Quad4 *lo, const Quad
     LoadCentre(item, &centre);
     Splat(&last, kBins - 1);
     Quad4 f = (centre - *lo) * *scale;
-    return (UInt4) __builtin_convertvector(f < last ? f : last, Int4);
+    return Bitcast<UInt4>(Convert<Int4>(Select(f < last, f, last)));
 }
 
 // The item's box added to its bins (`k`, BinsOf), each found by the byte offset of its place in
@@ -176,7 +171,7 @@ static RT_INLINE void FillFewBins(const BuildItem *items, int n, const Quad4 *lo
     for (int axis = 0; axis < 3; axis++) {
         bins->full[axis] = full[axis];
         for (unsigned bits = full[axis]; bits != 0; bits &= bits - 1)
-            bins->bin[axis][__builtin_ctz(bits)] = {EmptyBounds(), 0};
+            bins->bin[axis][LowestBit(bits)] = {EmptyBounds(), 0};
     }
     for (int i = 0; i < n; i++)
         AddItemAt(&items[i], k[i], bins);
@@ -205,7 +200,7 @@ static RT_INLINE void BestSplit(const Bins *bins, int axis, real nodeArea, Split
     const Bin *bin = bins->bin[axis];
     int full[kBins], m = 0;
     for (unsigned bits = bins->full[axis]; bits != 0; bits &= bits - 1)
-        full[m++] = __builtin_ctz(bits);
+        full[m++] = LowestBit(bits);
     if (m < 2)
         return;
     real rightCost[kBins]; // area times blocks
@@ -235,7 +230,7 @@ static RT_INLINE void BestSplit(const Bins *bins, int axis, real nodeArea, Split
 static RT_INLINE void SideBoxes(const Bins *bins, const Split *split, NodeBounds side[2]) {
     side[0].box = side[1].box = EmptyBounds();
     for (unsigned bits = bins->full[split->axis]; bits != 0; bits &= bits - 1) {
-        int k = __builtin_ctz(bits);
+        int k = LowestBit(bits);
         Grow(&side[k >= split->bin].box, &bins->bin[split->axis][k].box);
     }
 }
@@ -353,8 +348,8 @@ static RT_INLINE void MakeItems(const Triangle *triangles, int first, int last, 
         const Triangle *t = &triangles[i];
         Quad4 a, b, c = {t->c.x, t->c.y, t->c.z, t->c.z}; // (a, b: the 4th lane is what follows)
         Load(&a, &t->a.x), Load(&b, &t->b.x);
-        Quad4 lo = a < b ? a : b, hi = a > b ? a : b;
-        lo = lo < c ? lo : c, hi = hi > c ? hi : c;
+        Quad4 lo = Select(a < b, a, b), hi = Select(a > b, a, b);
+        lo = Select(lo < c, lo, c), hi = Select(hi > c, hi, c);
         Quad4 centre = lo * half + hi * half, finite = (a - a) + (b - b) + (c - c);
         if (!(finite[0] == 0 && finite[1] == 0 && finite[2] == 0 && finite[3] == 0))
             lo = -infinity, hi = infinity, Splat(&centre, 0);

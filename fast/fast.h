@@ -118,6 +118,10 @@ bool HitCommittedPacket(const Scene *scene, const SceneLayout *layout, const Ray
 
 // True if this processor runs the kernel's AVX2 copy (CommitScene sets SceneLayout::vectors).
 bool KernelHasVectors();
+// The kernels this program runs, as `./ray --version` names them: "avx2" or "sse2" (x86-64, one
+// chosen at run time), "neon" (aarch64), "vector extensions" (other processors), or "scalar"
+// (`make RT_SCALAR=1`, or a compiler without vector extensions).
+const char *KernelName();
 
 // ---- build.cpp: where the BVH build splits a node (for CommitScene) -------------------------
 

@@ -193,6 +193,18 @@ bool KernelHasVectors() {
 #endif
 }
 
+const char *KernelName() {
+#if RT_DISPATCH
+    return KernelHasVectors() ? "avx2" : "sse2";
+#elif RT_VECTORS && defined(__aarch64__)
+    return "neon";
+#elif RT_VECTORS
+    return "vector extensions";
+#else
+    return "scalar";
+#endif
+}
+
 // ---- the accelerator's two functions (Accelerator, ray.h) ----------------------------------
 
 // Whether the layout answers for this search: made from this very scene (not a copy), which

@@ -4,21 +4,14 @@
 // compiled copies (AVX2 and baseline) inlines all of it.
 #pragma once
 #include "fast.h"
-
-#if defined(__x86_64__) && defined(__GNUC__)
-#define RT_DISPATCH 1
-#define RT_AVX2 __attribute__((target("avx2")))
-#else
-#define RT_DISPATCH 0
-#endif
+#include "lanes.h"
 
 // The helpers below write their vectors through pointers and never return one: a 256-bit vector
-// is returned differently with AVX than without, which clang refuses in the baseline copy and GCC
-// warns of. They take them by value only where always inlined, so no call passes one.
-#pragma GCC diagnostic ignored "-Wpsabi"
+// is returned differently with AVX than without, which clang refuses in the baseline copy. They
+// take them by value only where always inlined, so no call passes one.
 
-typedef real Lanes __attribute__((vector_size(32))); // kLanes numbers
-typedef decltype(Lanes() < Lanes()) LaneMask;        // per lane: all bits set, or none
+RT_LANES(Lanes, real, kLanes);                // kLanes numbers
+typedef decltype(Lanes() < Lanes()) LaneMask; // per lane: all bits set, or none
 
 // The per-ray numbers of the watertight shear (RayShear), one copy in every lane.
 struct LaneRay {
@@ -53,11 +46,17 @@ static RT_INLINE void ShearLanes(const TriangleBlock *b, int corner, const LaneR
 // and one multiplication moves each byte's low bit to its own place. (Byte k's bit, at 8k, is
 // multiplied by 2^(top - 7k) among other powers; every product lands on a bit of its own, so no
 // carry disturbs the kLanes bits from `top` up.) With AVX2 that is a few instructions where a
-// loop over the lanes was about forty.
-typedef int MaskInts __attribute__((vector_size(sizeof(Lanes)))); // a LaneMask as ints
-typedef int FourInts __attribute__((vector_size(16)));
-typedef char SixteenBytes __attribute__((vector_size(16)));
+// loop over the lanes was about forty; without shuffles, the loop it is.
 static RT_INLINE unsigned LaneBits(const LaneMask *mask) {
+#if !RT_SHUFFLES
+    unsigned bits = 0;
+    for (int i = 0; i < kLanes; i++)
+        bits |= (unsigned)((*mask)[i] != 0) << i;
+    return bits;
+#else
+    typedef int MaskInts __attribute__((vector_size(sizeof(Lanes)))); // a LaneMask as ints
+    typedef int FourInts __attribute__((vector_size(16)));
+    typedef char SixteenBytes __attribute__((vector_size(16)));
     MaskInts ints;
     memcpy(&ints, mask, sizeof ints);
 #ifdef RT_FLOAT // eight lanes of one int: each half of the ints to bytes, then the halves joined
@@ -72,7 +71,7 @@ static RT_INLINE unsigned LaneBits(const LaneMask *mask) {
     memcpy(&lo, &a, 4), memcpy(&hi, &b, 4);
     uint64_t word = (uint64_t)hi << 32 | lo;
     return (unsigned)(((word & 0x0101010101010101u) * 0x0102040810204080u) >> 56);
-#else // four lanes of two ints: one int of each, then one byte of each
+#else           // four lanes of two ints: one int of each, then one byte of each
     typedef char FourBytes __attribute__((vector_size(4)));
     FourInts one = __builtin_shufflevector(ints, ints, 0, 2, 4, 6);
     SixteenBytes bytes;
@@ -81,6 +80,7 @@ static RT_INLINE unsigned LaneBits(const LaneMask *mask) {
     uint32_t word;
     memcpy(&word, &each, sizeof word);
     return (unsigned)(((uint64_t)(word & 0x01010101u) * 0x01020408u >> 24) & 0xf);
+#endif
 #endif
 }
 
@@ -189,7 +189,7 @@ static RT_INLINE bool TestBlocks(const TriangleBlock *blocks, int first, int cou
         unsigned live = kVectors ? Survivors<kz>(b, &s->lanes, &sure)
                                  : SurvivorsOneByOne<kz>(b, s->shear, &sure);
         for (; live != 0; live &= live - 1) {
-            int lane = __builtin_ctz(live), index = b->index[lane];
+            int lane = LowestBit(live), index = b->index[lane];
             if (index < 0 || index == s->skip)
                 continue;
             real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;

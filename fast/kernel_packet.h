@@ -103,11 +103,11 @@ static RT_INLINE void PacketSpheres(const Scene *scene, const SceneLayout *layou
     for (size_t k = 0; k < blocks.size(); k++) {
         const SphereBlock *b = &blocks[k];
         for (unsigned left = b->filled; left != 0; left &= left - 1) {
-            int lane = __builtin_ctz(left), i = (int)k * kLanes + lane;
+            int lane = LowestBit(left), i = (int)k * kLanes + lane;
             vec3 c = {b->center[0][lane], b->center[1][lane], b->center[2][lane]};
             unsigned live = RaysMayMeet(c, b->r2[lane], l) & p->active;
             for (; live != 0; live &= live - 1) {
-                int r = __builtin_ctz(live);
+                int r = LowestBit(live);
                 RayHit *hit = &p->hits[r];
                 if (!IntersectSphere(&scene->spheres[i], &p->packet->rays[r], 0, p->tMax[r], hit))
                     continue;
@@ -175,7 +175,7 @@ static RT_INLINE void PlaneHits(const Scene *scene, const SceneLayout *layout, i
         unsigned mine = rays >> (chunk * kPlaneLanes) & ((1u << kPlaneLanes) - 1);
         if ((mine & (mine - 1)) == 0) { // one ray or none: the scalar function
             for (; mine != 0; mine &= mine - 1) {
-                int r = chunk * kPlaneLanes + __builtin_ctz(mine);
+                int r = chunk * kPlaneLanes + LowestBit(mine);
                 Take(p, r, index,
                      RobustPlaneHit(tri, setUp, &q->rays[r], 0, limit[r], &p->hits[r]));
             }
@@ -183,14 +183,14 @@ static RT_INLINE void PlaneHits(const Scene *scene, const SceneLayout *layout, i
         }
         PlaneLanes tMax = Same(kInfinity); // (in a register, lane by lane)
         for (unsigned left = mine; left != 0; left &= left - 1) {
-            int k = __builtin_ctz(left);
+            int k = LowestBit(left);
             tMax[k] = limit[chunk * kPlaneLanes + k];
         }
         QuickAnswer answer[kPlaneLanes];
         PlaneT plane[kPlaneLanes];
         QuickPlaneLanes(tri, setUp, &p->plane[chunk], &tMax, kPlaneLanes, answer, plane);
         for (; mine != 0; mine &= mine - 1) {
-            int k = __builtin_ctz(mine), r = chunk * kPlaneLanes + k;
+            int k = LowestBit(mine), r = chunk * kPlaneLanes + k;
             const Ray *ray = &q->rays[r];
             if (answer[k] == PLANE_HIT)
                 Take(p, r, index, PlaneHitRecord(tri, setUp, ray, plane[k], &p->hits[r]));
@@ -217,7 +217,7 @@ static RT_INLINE void PacketTriangles(const Scene *scene, const SceneLayout *lay
             unsigned live = RaysSurvive<kz>(b, lane, l, p->active, &sure);
             real limit[kLanes];
             for (; live != 0; live &= live - 1) {
-                int r = __builtin_ctz(live);
+                int r = LowestBit(live);
                 limit[r] = p->best[r] >= 0 && index < p->best[r] ? NextAfter(p->tMax[r], true)
                                                                  : p->tMax[r];
                 if (sure >> r & 1u) {

@@ -75,7 +75,7 @@ static RT_INLINE unsigned MayMeetOneByOne(const SphereBlock *b, const Ray *ray) 
     real a = Dot(d, d);
     unsigned live = 0;
     for (unsigned left = b->filled; left != 0; left &= left - 1) {
-        int lane = __builtin_ctz(left);
+        int lane = LowestBit(left);
         vec3 c = {b->center[0][lane], b->center[1][lane], b->center[2][lane]};
         vec3 fxd = Cross(ray->origin - c, d);
         real ar2 = a * b->r2[lane];
@@ -100,7 +100,7 @@ static RT_NOINLINE bool HitLiveSpheres(const Sphere *spheres, uint64_t live, int
                                        const Ray *ray, real tMin, real *tMax, RayHit *hit) {
     bool found = false;
     for (; live != 0; live &= live - 1) {
-        int i = __builtin_ctzll(live);
+        int i = LowestBit(live);
         if (i == skip || !IntersectSphere(&spheres[i], ray, tMin, *tMax, hit))
             continue;
         hit->index = i;

@@ -6,7 +6,7 @@
 
 // The four children of a node tested at once: SlabInterval for each, lane by lane, with the
 // same operations in the same order (so a child's window is exactly what SlabInterval gives).
-typedef real Quad __attribute__((vector_size(kChildren * sizeof(real))));
+RT_LANES(Quad, real, kChildren);
 typedef decltype(Quad() < Quad()) QuadMask;
 
 static RT_INLINE void LoadQuad(Quad *v, const real *p) { memcpy(v, p, sizeof *v); }
@@ -41,7 +41,7 @@ static RT_INLINE void MakeNodeRay(const Ray *ray, real tMin, const BvhNode *anyN
         SplatQuad(&r->origin[i], origin[i]), SplatQuad(&r->inverse[i], inverse);
         const char *node = (const char *)anyNode; // (every node has its arrays at the same places)
         size_t lo = (const char *)anyNode->lo[i] - node, hi = (const char *)anyNode->hi[i] - node;
-        QuadMask sign = (QuadMask)negativeZero, none = QuadMask{};
+        QuadMask sign = Bitcast<QuadMask>(negativeZero), none = QuadMask{};
         bool backward = std::signbit(inverse); // meets hi before lo
         r->entry[i] = backward ? hi : lo, r->entrySign[i] = backward ? none : sign;
         r->exit[i] = backward ? lo : hi, r->exitSign[i] = backward ? sign : none;
@@ -55,7 +55,7 @@ static RT_INLINE void PlaneDistance(const BvhNode *n, size_t plane, const QuadMa
                                     const Quad *pad, const Quad *o, const Quad *inv, Quad *t) {
     Quad p;
     LoadQuad(&p, (const real *)((const char *)n + plane));
-    *t = ((p + (Quad)((QuadMask)*pad ^ *sign)) - *o) * *inv;
+    *t = ((p + Bitcast<Quad>(Bitcast<QuadMask>(*pad) ^ *sign)) - *o) * *inv;
 }
 
 // Each child's window (SlabInterval) cut to the ray's interval [tMin, tMax]: the maximum and
@@ -78,8 +78,8 @@ static RT_INLINE void ChildWindows(const BvhNode *n, const NodeRay *r, const Qua
         PlaneDistance(n, r->entry[i], &r->entrySign[i], &pad, &r->origin[i], &r->inverse[i],
                       &first);
         PlaneDistance(n, r->exit[i], &r->exitSign[i], &pad, &r->origin[i], &r->inverse[i], &last);
-        near = first > near ? first : near; // (NaN compares false: no restriction)
-        far = last < far ? last : far;
+        near = Select(first > near, first, near); // (NaN compares false: no restriction)
+        far = Select(last < far, last, far);
     }
     *tNear = near, *tFar = far;
 }
@@ -89,32 +89,33 @@ static RT_INLINE void ChildWindows(const BvhNode *n, const NodeRay *r, const Qua
 // have no "movemask"; two shuffles gather a byte of each lane's compare (all ones or none)
 // into one word, which GCC and clang compile to three instructions with AVX2. Without it the
 // shuffles become a dozen moves through memory, and four scalar compares are cheaper.
-typedef int QuadInts __attribute__((vector_size(kChildren * sizeof(int))));   // a node's child ints
-typedef int LaneInts __attribute__((vector_size(sizeof(Quad))));              // a QuadMask as ints
-typedef char QuadBytes __attribute__((vector_size(kChildren * sizeof(int)))); // QuadInts as bytes
-typedef char ChildBytes __attribute__((vector_size(kChildren)));              // a byte a child
-
 template <bool kVectors>
 static RT_INLINE unsigned OpenChildren(const BvhNode *n, const Quad *near, const Quad *far) {
-    if (!kVectors) {
-        unsigned bits = 0;
-        for (int k = 0; k < kChildren; k++)
-            bits |= (unsigned)((*near)[k] <= (*far)[k] && n->blocks[k] >= 0) << (8 * k);
-        return bits;
+#if RT_SHUFFLES
+    if (kVectors) {
+        typedef int QuadInts __attribute__((vector_size(kChildren * sizeof(int)))); // child ints
+        typedef int LaneInts __attribute__((vector_size(sizeof(Quad)))); // a QuadMask as ints
+        typedef char QuadBytes __attribute__((vector_size(kChildren * sizeof(int)))); // as bytes
+        typedef char ChildBytes __attribute__((vector_size(kChildren))); // a byte a child
+        QuadMask open = *near <= *far;                                   // all four at once
+        LaneInts lanes;
+        memcpy(&lanes, &open, sizeof lanes);
+        const int R = sizeof(real) / sizeof(int); // a lane's ints: each is all ones, or none
+        QuadInts blocks, child = __builtin_shufflevector(lanes, lanes, 0, R, 2 * R, 3 * R);
+        memcpy(&blocks, n->blocks, sizeof blocks);
+        child &= blocks > -1; // a missing child's box is no box
+        QuadBytes bytes;
+        memcpy(&bytes, &child, sizeof bytes);
+        ChildBytes each = __builtin_shufflevector(bytes, bytes, 0, 4, 8, 12);
+        unsigned bits;
+        memcpy(&bits, &each, sizeof bits);
+        return bits & 0x01010101u;
     }
-    QuadMask open = *near <= *far; // all four at once
-    LaneInts lanes;
-    memcpy(&lanes, &open, sizeof lanes);
-    const int R = sizeof(real) / sizeof(int); // a lane's ints: each is all ones, or none
-    QuadInts blocks, child = __builtin_shufflevector(lanes, lanes, 0, R, 2 * R, 3 * R);
-    memcpy(&blocks, n->blocks, sizeof blocks);
-    child &= blocks > -1; // a missing child's box is no box
-    QuadBytes bytes;
-    memcpy(&bytes, &child, sizeof bytes);
-    ChildBytes each = __builtin_shufflevector(bytes, bytes, 0, 4, 8, 12);
-    unsigned bits;
-    memcpy(&bits, &each, sizeof bits);
-    return bits & 0x01010101u;
+#endif
+    unsigned bits = 0;
+    for (int k = 0; k < kChildren; k++)
+        bits |= (unsigned)((*near)[k] <= (*far)[k] && n->blocks[k] >= 0) << (8 * k);
+    return bits;
 }
 
 // A child waiting to be visited, and where its window begins.
@@ -136,7 +137,7 @@ static RT_INLINE void SortChildren(const BvhNode *n, unsigned open, const Quad *
     Pending *sorted = stack + *top;
     int count = 0;
     for (; open != 0; open &= open - 1) {
-        int k = __builtin_ctz(open) / 8, at = count++;
+        int k = LowestBit(open) / 8, at = count++;
         while (at > 0 && sorted[at - 1].near < (*near)[k])
             sorted[at] = sorted[at - 1], at--;
         sorted[at] = {n->child[k], n->blocks[k], (*near)[k]};
@@ -159,7 +160,7 @@ static RT_INLINE bool VisitNode(const BvhNode *n, const NodeRay *r, const Quad *
     if (open == 0)
         return false;
     unsigned rest = open & (open - 1);
-    int k = __builtin_ctz(open) / 8;
+    int k = LowestBit(open) / 8;
     if (rest == 0) {
         *next = {n->child[k], n->blocks[k], near[k]};
         return true;
@@ -168,7 +169,7 @@ static RT_INLINE bool VisitNode(const BvhNode *n, const NodeRay *r, const Quad *
         SortChildren(n, open, &near, stack, top, next);
         return true;
     }
-    int later = __builtin_ctz(rest) / 8;
+    int later = LowestBit(rest) / 8;
     int first = near[later] <= near[k] ? later : k, second = first == k ? later : k;
     stack[(*top)++] = {n->child[second], n->blocks[second], near[second]};
     *next = {n->child[first], n->blocks[first], near[first]};

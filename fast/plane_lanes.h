@@ -14,15 +14,15 @@
 
 #include <cfloat>
 
-typedef double PlaneLanes __attribute__((vector_size(32))); // 4 doubles
-typedef decltype(PlaneLanes() < PlaneLanes()) PlaneMask;    // per lane: all bits set, or none
+RT_LANES(PlaneLanes, double, 4);                         // 4 doubles
+typedef decltype(PlaneLanes() < PlaneLanes()) PlaneMask; // per lane: all bits set, or none
 const int kPlaneLanes = 4;
 
 static RT_INLINE PlaneLanes Same(double x) { return PlaneLanes{x, x, x, x}; }
 // fabs, lane by lane: the sign bit cleared. (The vector by pointer: passed by value, GCC notes
 // that 32-byte arguments pass differently since GCC 4.6, whatever the pragma in kernel_blocks.h.)
 static RT_INLINE PlaneLanes Magnitude(const PlaneLanes *v) {
-    typedef long long Bits __attribute__((vector_size(32)));
+    RT_LANES(Bits, long long, 4);
     Bits b;
     memcpy(&b, v, sizeof b);
     b &= Bits{} + 0x7fffffffffffffffll;

@@ -1,14 +1,27 @@
 #!/bin/sh
-# Runs each test program given, shows its output, and ends with the sum of their counts as the
-# last line: `N passed, M failed`. Exits non-zero if any test failed or a program crashed.
+# Runs the test programs given, all at once (each is one process, and the machine's cores share
+# them), then shows each one's output in the order given and ends with the sum of their counts
+# as the last line: `N passed, M failed`. Exits non-zero if any test failed or a program crashed.
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+echo "running $# test programs at once"
+i=0
+for program in "$@"; do
+    i=$((i + 1))
+    ("$program" >"$dir/$i.out" 2>"$dir/$i.err"; echo $? >"$dir/$i.status") &
+done
+wait
+
 passed=0
 failed=0
+i=0
 for program in "$@"; do
+    i=$((i + 1))
     echo "== $program"
-    out=$("$program")
-    status=$?
-    printf '%s\n' "$out" | sed '$d'
-    last=$(printf '%s\n' "$out" | tail -n 1)
+    status=$(cat "$dir/$i.status")
+    sed '$d' "$dir/$i.out"
+    cat "$dir/$i.err"
+    last=$(tail -n 1 "$dir/$i.out")
     echo "   $program: $last"
     p=$(printf '%s\n' "$last" | sed -n 's/^\([0-9]*\) passed, \([0-9]*\) failed$/\1/p')
     f=$(printf '%s\n' "$last" | sed -n 's/^\([0-9]*\) passed, \([0-9]*\) failed$/\2/p')
