@@ -42,6 +42,9 @@ APP = app/options app/modes app/image app/image_read app/text app/scene_file app
       app/mesh app/probe app/views
 CORE = $(TOP) $(ROBUST) $(FAST) $(APP)
 TESTS = $(basename $(notdir $(wildcard tests/test_*.cpp))) exercise hard_cases hard_cases_offset robust_scenes
+# The tests that run the program or read files, and use no `real`: compiled once for both builds.
+SHARED_TESTS = test_program test_files test_corpus test_compare
+PER_BUILD_TESTS = $(filter-out $(SHARED_TESTS),$(TESTS))
 
 # Object lists for one build variant: $(call objs,DIR,NAMES)
 objs = $(addprefix $(1)/,$(addsuffix .o,$(2)))
@@ -66,17 +69,28 @@ build/float/%.o: %.cpp build/config
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) $(PNG_CFLAGS) -DRT_FLOAT -I. -c -o $@ $<
 
-# The test programs: the same tests, once in double and once in float.
-build/double/run_tests: $(call objs,build/double/tests,$(TESTS)) $(DOUBLE_CORE)
+# The test programs: the same tests, once in double and once in float (SHARED_TESTS in both).
+build/shared/%.o: %.cpp build/config
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS) $(RT_FLAGS) $(PNG_CFLAGS) -I. -c -o $@ $<
+
+SHARED_TEST_OBJS = $(call objs,build/shared/tests,$(SHARED_TESTS))
+build/double/run_tests: $(call objs,build/double/tests,$(PER_BUILD_TESTS)) $(SHARED_TEST_OBJS) $(DOUBLE_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
-build/float/run_tests: $(call objs,build/float/tests,$(TESTS)) $(FLOAT_CORE)
+build/float/run_tests: $(call objs,build/float/tests,$(PER_BUILD_TESTS)) $(SHARED_TEST_OBJS) $(FLOAT_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
 test: all build/double/run_tests build/float/run_tests
 	@sh tests/run.sh build/double/run_tests build/float/run_tests tests/recipe.sh
 
 check: test
+
+# The student's quicker loop: the checks of the handouts' steps (hits, shading, the camera, the
+# assignment image, the effects), in double only. `make test` stays the whole suite.
+CORE_GROUPS = geometry triangles shading camera assignment_image effects
+check-core: ray build/double/run_tests
+	@build/double/run_tests $(CORE_GROUPS)
 
 # Sanitizers: the core, the program and the double tests rebuilt with ASan + UBSan; the tests
 # that run the program run the sanitized one.
@@ -150,6 +164,6 @@ bench-publish:
 clean:
 	rm -rf build ray ray_float
 
-.PHONY: all test check sanitize fuzz bench bench-publish clean
+.PHONY: all test check check-core sanitize fuzz bench bench-publish clean
 
 -include $(wildcard build/*/*.d build/*/*/*.d)
