@@ -12,8 +12,6 @@
 #pragma once
 #include "kernel_blocks.h"
 
-#define RT_NOINLINE __attribute__((noinline))
-
 // The per-ray numbers of LineMissesSphere, one copy in every lane.
 struct SphereLaneRay {
     Lanes ox, oy, oz; // the origin

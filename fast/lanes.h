@@ -39,6 +39,16 @@
 #define RT_AVX2
 #endif
 
+// Always inlined, or never: the kernel's common case stays one function whose numbers stay in
+// registers. (Attributes of GCC and clang; elsewhere plain inline and nothing, same answers.)
+#if defined(__GNUC__) || defined(__clang__)
+#define RT_INLINE inline __attribute__((always_inline))
+#define RT_NOINLINE __attribute__((noinline))
+#else
+#define RT_INLINE inline
+#define RT_NOINLINE
+#endif
+
 // Helpers that are always inlined, so that no call passes or returns a vector (a 256-bit vector
 // passes differently with AVX than without, which GCC warns of, and -Wpsabi is that warning).
 #if defined(__GNUC__) || defined(__clang__)

@@ -33,8 +33,7 @@ static dvec3 CrossTerms(dvec3 a, dvec3 b) {
             std::fabs(a.x * b.y) + std::fabs(a.y * b.x)};
 }
 
-// The rare tiers and set-ups are RT_COLD, out of line, so that the common path through
-// RobustPlaneHit is a small function whose values stay in registers. kU, GammaD,
+// kU, GammaD,
 // kPlainRelativeError, kFirstOrderShare and PlaneHitRecord are in robust.h: fast/'s packets
 // compute tier 1 too (fast/plane_lanes.h).
 
@@ -115,7 +114,7 @@ static double PlaneError(double t, double denominator, double eN, double eD, dve
 // product with n and the two additions, gamma(4) of sum |n_i (a_i - o_i)|; n.d, gamma(3) of
 // sum |n_i d_i|; each normal component, two edge roundings, the products and the subtraction:
 // gamma(5) of its two products' sizes; the division, gamma(1) of t.
-static RT_INLINE double PlainError(const PlaneProblem *p, dvec3 toA, double t, double denominator) {
+static inline double PlainError(const PlaneProblem *p, dvec3 toA, double t, double denominator) {
     dvec3 absN = AbsD(p->fixed->n);
     double eN = GammaD(4) * DotD(absN, AbsD(toA));
     double eD = GammaD(3) * DotD(absN, AbsD(p->dir));
@@ -129,7 +128,7 @@ static RT_INLINE double PlainError(const PlaneProblem *p, dvec3 toA, double t, d
 // of them, so 32 u^2 of the first-order terms' sizes bounds what they contribute; rounding the
 // two sums to double and dividing adds 3 u of t to first order, which gamma(4) covers with room
 // for the products of those three roundings.
-RT_COLD static PlaneT DoubleDoublePlaneT(const PlaneProblem *p) {
+static PlaneT DoubleDoublePlaneT(const PlaneProblem *p) {
     int k = p->fixed->scale;
     dvec3 b = Widen(p->tri->b), c = Widen(p->tri->c);
     DoubleDouble3 e1 = ExactDifference(b, p->a, k), e2 = ExactDifference(c, p->a, k);
@@ -216,7 +215,7 @@ struct Window {
 // is inside the window, whose other half covers the rounding of this test and of SlabInterval
 // (a few u of the same sizes, against 64 u), so moving t into the window would not change it.
 // Almost every hit is decided here, with no division.
-static RT_INLINE bool WellInside(const PlaneProblem *p, double t, const Window *w) {
+static inline bool WellInside(const PlaneProblem *p, double t, const Window *w) {
     const Box *box = w->box;
     double pad = 0.5 * ((double)kBoxAllowance * box->size + OriginPad(w->ray));
     const double q[3] = {p->origin.x + t * p->dir.x, p->origin.y + t * p->dir.y,
@@ -233,7 +232,7 @@ static RT_INLINE bool WellInside(const PlaneProblem *p, double t, const Window *
 // where the line passes the triangle, not out there. That keeps every hit inside its triangle's
 // window, which is what lets the BVH skip boxes a ray passes outside. A hit on the triangle is
 // inside already (the window is wider than the hit's own error bound), and never moves.
-RT_COLD static bool MoveIntoWindow(Window *w, PlaneT *plane) {
+static bool MoveIntoWindow(Window *w, PlaneT *plane) {
     if (!w->known) {
         SlabRay slab = MakeSlabRay(w->ray);
         SlabInterval(w->box->lo, w->box->hi, w->box->size, &slab, &w->near, &w->far);
@@ -255,7 +254,7 @@ static inline bool IntoWindow(const PlaneProblem *p, Window *w, PlaneT *plane) {
 // of 2 covers many times over. A triangle whose corners are nearly in a line, or a ray that all
 // but skims its plane, fails this: its plain t can be off by far more than the bound says.
 // The normal's half depends on the triangle alone: SetUpTriangle decides it (normalKnown).
-static RT_INLINE bool FirstOrderHolds(const PlaneProblem *p, double denominator) {
+static inline bool FirstOrderHolds(const PlaneProblem *p, double denominator) {
     dvec3 absD = AbsD(p->dir);
     double eD = GammaD(3) * DotD(AbsD(p->fixed->n), absD) + DotD(p->fixed->nError, absD);
     return p->fixed->normalKnown && eD <= kFirstOrderShare * std::fabs(denominator);
@@ -306,8 +305,8 @@ static bool FindPlaneT(const PlaneProblem *p, Window *w, real tMin, real tMax, P
 // the window, the bound trusted, and t either clearly out of (tMin, tMax) or within
 // kPlainRelativeError of itself. The same operations as FindPlaneT's, in the same order, so the
 // same t, bound and answer; anything else is PLANE_UNSURE, and FindPlaneT starts again.
-static RT_INLINE QuickAnswer QuickPlaneT(const PlaneProblem *p, const Ray *ray, real tMin,
-                                         real tMax, PlaneT *plane) {
+static inline QuickAnswer QuickPlaneT(const PlaneProblem *p, const Ray *ray, real tMin, real tMax,
+                                      PlaneT *plane) {
     dvec3 toA = Sub(p->a, p->origin);
     double denominator = DotD(p->fixed->n, p->dir);
     double t = DotD(p->fixed->n, toA) / denominator;
@@ -327,16 +326,16 @@ static RT_INLINE QuickAnswer QuickPlaneT(const PlaneProblem *p, const Ray *ray, 
 
 // Everything QuickPlaneT leaves open: FindPlaneT, from the start. (It makes its own
 // PlaneProblem: taking the caller's by address would keep that one in memory on the common path.)
-RT_COLD static bool SlowPlaneT(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray,
-                               real tMin, real tMax, PlaneT *plane) {
+static bool SlowPlaneT(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray, real tMin,
+                       real tMax, PlaneT *plane) {
     PlaneProblem p = {tri, setUp, Widen(tri->a), Widen(ray->origin), Widen(ray->dir)};
     Window window = {&setUp->box, ray, false, 0, 0};
     return FindPlaneT(&p, &window, tMin, tMax, plane);
 }
 
 // A triangle without a set-up (a caller outside the committed scene): one made for it.
-RT_COLD static bool HitWithoutSetUp(const Triangle *tri, const Ray *ray, real tMin, real tMax,
-                                    RayHit *hit) {
+static bool HitWithoutSetUp(const Triangle *tri, const Ray *ray, real tMin, real tMax,
+                            RayHit *hit) {
     TriangleSetUp own;
     SetUpTriangle(tri, &own);
     return RobustPlaneHit(tri, &own, ray, tMin, tMax, hit);

@@ -30,8 +30,8 @@ static real CutAt(real end, real inward, int k) {
 // end is cut where t' 2^k crosses it (CutAt), then checked against ScaleBack's own rounding and
 // moved one step where it falls on the wrong side (a tie rounds to even). ScaleByPowerOfTwo
 // rounds monotonically, so every t' between the two ends comes back inside, and none outside
-// them would. (Out of line and cold: only a direction outside the window comes here.)
-RT_COLD static void ScaledInterval(real tMin, real tMax, int k, real *lo, real *hi) {
+// them would. (Only a direction outside the window comes here.)
+static void ScaledInterval(real tMin, real tMax, int k, real *lo, real *hi) {
     real first = CutAt(tMin, NextAfter(tMin, true), k); // the least t' above tMin
     if (!(ScaleByPowerOfTwo(first, k) > tMin))
         first = NextAfter(first, true);

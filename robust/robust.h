@@ -9,17 +9,6 @@
 #pragma once
 #include "../ray.h"
 
-// Always inlined, or never and laid out apart: the robust tests' common case stays one small
-// function whose numbers stay in registers, and their rare tiers stay out of its way. (Attributes
-// of GCC and clang; elsewhere plain inline and nothing, with the same answers.)
-#if defined(__GNUC__)
-#define RT_INLINE inline __attribute__((always_inline))
-#define RT_COLD __attribute__((noinline, cold))
-#else
-#define RT_INLINE inline
-#define RT_COLD
-#endif
-
 // The number next to x toward +infinity (up) or -infinity: std::nextafter(x, +-infinity), bit
 // for bit, without the library call. Away from 0 the neighbour is the bit pattern one step
 // further from or nearer to 0; from 0 it is the smallest subnormal.
