@@ -81,8 +81,8 @@ build/double/run_tests: $(call objs,build/double/tests,$(PER_BUILD_TESTS)) $(SHA
 build/float/run_tests: $(call objs,build/float/tests,$(PER_BUILD_TESTS)) $(SHARED_TEST_OBJS) $(FLOAT_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
-test: all build/double/run_tests build/float/run_tests
-	@sh tests/run.sh build/double/run_tests build/float/run_tests tests/recipe.sh
+test: all build/double/run_tests build/float/run_tests build/tiny
+	@sh tests/run.sh build/double/run_tests build/float/run_tests tests/recipe.sh tests/grade.sh
 
 check: test
 
@@ -147,6 +147,17 @@ build/student: bench/student.cpp
 bench: ray ray_float build/double/rtbench build/float/rtbench build/student build/make_mesh
 	@sh bench/bench.sh
 
+# The grader: `make grade TRACER=PROGRAM` runs PROGRAM on each grading scene (scenes/grade/) and
+# compares its images with rt's; `make grade IMAGES=DIR` grades a folder of images. build/tiny is
+# a tiny tracer with a bug on demand (tests/grade/tiny.cpp): the grader names a failing scene's
+# bug by the one whose image it matches.
+build/tiny: tests/grade/tiny.cpp build/config
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS) -std=c++17 -Wall -Wextra -ffp-contract=off -o $@ $< $(PNG_CFLAGS) $(PNG_LIBS)
+
+grade: ray build/tiny
+	@sh tools/grade.sh $(if $(IMAGES),--images "$(IMAGES)","$(TRACER)")
+
 # The mesh generator (tools/make_mesh.cpp), for trying the `mesh` statement on large models:
 # `make build/make_mesh`. Not part of `make`: rt does not need it.
 build/make_mesh: tools/make_mesh.cpp
@@ -164,6 +175,6 @@ bench-publish:
 clean:
 	rm -rf build ray ray_float
 
-.PHONY: all test check check-core sanitize fuzz bench bench-publish clean
+.PHONY: all test check check-core grade sanitize fuzz bench bench-publish clean
 
 -include $(wildcard build/*/*.d build/*/*/*.d)
