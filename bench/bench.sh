@@ -8,12 +8,13 @@
 # so both see the same machine load, and their ratio is the median of the pairs' ratios.
 set -eu
 RUNS=${RUNS:-11}
+cores=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1) # (POSIX; nproc is GNU's)
 dir=build/bench
 mkdir -p "$dir"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 report="$dir/speed.md"
-echo "make bench on $(nproc) cores, $(date -u +%Y-%m-%d): writing $dir/" >&2
+echo "make bench on $cores cores, $(date -u +%Y-%m-%d): writing $dir/" >&2
 
 # spread FILE: "median (min-max)" of the numbers in FILE, one a line
 spread() { sort -g "$1" | awk '{ v[NR] = $1 } END { m = (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2; printf "%.1f (%.1f-%.1f)", m, v[1], v[NR] }'; }
@@ -45,7 +46,7 @@ make_row() { # NAME LABEL: a table row of the whole-process and render times
 }
 
 {
-echo "# make bench, $(date -u +%Y-%m-%d), $(nproc) cores"
+echo "# make bench, $(date -u +%Y-%m-%d), $cores cores"
 echo
 echo "Times in ms, median (min-max) of $RUNS runs, run in turn with what they are compared with; a ratio is the median (quartiles) of the ratios of the runs taken in turn."
 echo
@@ -64,16 +65,16 @@ for k in $(seq "$RUNS"); do
     timed student16 build/student "$out/s.png" 16
 done
 {
-make_row all "./ray ($(nproc) threads)"
+make_row all "./ray ($cores threads)"
 make_row one "./ray --threads 1"
-make_row all16 "./ray --spp 16 ($(nproc) threads)"
+make_row all16 "./ray --spp 16 ($cores threads)"
 make_row one16 "./ray --spp 16 --threads 1"
 make_row float16 "./ray_float --spp 16 --threads 1"
 echo "| build/student 16 (a plain float student solution, -O2) | $(spread "$out/student16") | | |"
 echo
 echo "- rt against the student solution, 16 spp, one thread: $(ratio "$out/one16" "$out/student16")"
 echo "- ray_float against ray, 16 spp, one thread: $(ratio "$out/float16" "$out/one16")"
-echo "- one thread against $(nproc), 16 spp (render): $(ratio "$out/one16.render" "$out/all16.render")"
+echo "- one thread against $cores, 16 spp (render): $(ratio "$out/one16.render" "$out/all16.render")"
 } >>"$report"
 
 # The floor: a process that only writes the same PNG with the same settings, in turn with ./ray
@@ -124,8 +125,8 @@ build/float/rtbench path "$dir"
 echo
 echo "## Path tracing (shading path)"
 echo
-echo "- scenes/cornell.scene, 512 x 512, 64 spp, $(nproc) threads: render $(spread "$out/cornell.render") ms;"
-echo "  $vertices path vertices: $(awk -v v="$vertices" -v t="$(median "$out/cornell.render")" -v n="$(nproc)" 'BEGIN { printf "%.2f", v / (t / 1000) / n / 1e6 }') million a second a thread"
+echo "- scenes/cornell.scene, 512 x 512, 64 spp, $cores threads: render $(spread "$out/cornell.render") ms;"
+echo "  $vertices path vertices: $(awk -v v="$vertices" -v t="$(median "$out/cornell.render")" -v n="$cores" 'BEGIN { printf "%.2f", v / (t / 1000) / n / 1e6 }') million a second a thread"
 echo
 echo "Error against time, 96 x 96, RMSE in 8-bit levels against 4,096 samples (path.md, path_float.md):"
 echo
@@ -148,7 +149,7 @@ sed 's/ specular [0-9][0-9.]* [0-9][0-9.]*//' scenes/effects.scene >"$out/effect
 sed 's/ mirror [0-9][0-9.]*//' scenes/effects.scene >"$out/effects_no_mirrors.scene"
 {
 echo
-echo "## What each effect costs ($(nproc) threads)"
+echo "## What each effect costs ($cores threads)"
 echo
 echo "| scene | render ms | primary | shadow | reflection | refraction | effects |"
 echo "|---|---:|---:|---:|---:|---:|---|"
