@@ -69,7 +69,11 @@ std::string PlaceLabels(SvgLabels *labels, const std::vector<SvgMark> &marks);
 std::string SvgLegend(const SvgLabels &labels, double x, double y, double step);
 
 // printf into a std::string, of any length.
+#if defined(__GNUC__) || defined(__clang__) // (so that -Wformat checks the calls)
 std::string Format(const char *format, ...) __attribute__((format(printf, 1, 2)));
+#else
+std::string Format(const char *format, ...);
+#endif
 
 // A time measured several times, as the plots draw it (whiskers) and the sentences compare it.
 struct Spread {
