@@ -100,11 +100,30 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
     return 0;
 }
 
+// The scene the command line names, read and checked against the options, its warnings said.
+// False: it cannot be drawn, and the reason is said.
+static bool LoadCheckedScene(Options *opt, Scene *scene, std::string *defaultOutput) {
+    std::string error, warning;
+    if (!LoadScene(opt->scene, scene, defaultOutput, &error)) {
+        Complain(error);
+        return false;
+    }
+    for (const std::string &w : scene->warnings)
+        Complain(w);
+    if (!CheckScreenCameraSize(opt, scene, &error, &warning)) {
+        Complain(error);
+        return false;
+    }
+    if (!warning.empty())
+        Complain(warning);
+    return true;
+}
+
 // The program: one mode per run (help, compare, probe, pixel tree, render or view).
 static int Run(int argc, char **argv) {
     auto start = std::chrono::steady_clock::now();
     Options opt;
-    std::string error, warning, defaultOutput;
+    std::string error, defaultOutput;
     if (!ParseOptions(argc, argv, &opt, &error)) {
         Complain(error);
         return 2;
@@ -119,18 +138,8 @@ static int Run(int argc, char **argv) {
     if (opt.compare)
         return CompareMode(&opt);
     Scene scene;
-    if (!LoadScene(opt.scene, &scene, &defaultOutput, &error)) {
-        Complain(error);
+    if (!LoadCheckedScene(&opt, &scene, &defaultOutput))
         return 2;
-    }
-    for (const std::string &w : scene.warnings)
-        Complain(w);
-    if (!CheckScreenCameraSize(&opt, &scene, &error, &warning)) {
-        Complain(error);
-        return 2;
-    }
-    if (!warning.empty())
-        Complain(warning);
     RenderSettings settings = ChosenSettings(&opt, &scene);
     // The speed machinery, for the robust tests only (the handouts' methods are the plain loop,
     // as written): the scene committed, its BVH built on as many threads as the render runs on

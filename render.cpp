@@ -344,6 +344,26 @@ static RenderProgress Progress(const RowQueue *queue, int height, double seconds
     return {done, rays / seconds, left, false};
 }
 
+// The calling thread renders too; with a progress report it renders one row at a time and
+// reports every half second once the render has run that long. True if it reported.
+static bool RenderOwnRows(const Scene *scene, const RenderSettings *settings, RowQueue *queue,
+                          Image *image, RayStats *stats) {
+    auto start = std::chrono::steady_clock::now();
+    double lastShown = 0;
+    while (TakeRow(scene, settings, queue, image, stats)) {
+        if (!settings->progress)
+            continue;
+        auto elapsed = std::chrono::steady_clock::now() - start;
+        double seconds = std::chrono::duration<double>(elapsed).count();
+        if (seconds - lastShown >= 0.5) {
+            RenderProgress now = Progress(queue, settings->height, seconds);
+            settings->progress(&now);
+            lastShown = seconds;
+        }
+    }
+    return lastShown > 0;
+}
+
 int Render(const Scene *scene, const RenderSettings *requested, Image *image, RayStats *stats) {
     // Plan a copy for this scene, so settings planned for another scene can do no harm
     RenderSettings planned = *requested;
@@ -365,24 +385,10 @@ int Render(const Scene *scene, const RenderSettings *requested, Image *image, Ra
         }
     }
 
-    // The calling thread renders too; with a progress report it renders one row at a time and
-    // reports every half second once the render has run that long, and once more at the end.
-    auto start = std::chrono::steady_clock::now();
-    double lastShown = 0;
-    while (TakeRow(scene, settings, &queue, image, &perThread[0])) {
-        if (!settings->progress)
-            continue;
-        auto elapsed = std::chrono::steady_clock::now() - start;
-        double seconds = std::chrono::duration<double>(elapsed).count();
-        if (seconds - lastShown >= 0.5) {
-            RenderProgress now = Progress(&queue, settings->height, seconds);
-            settings->progress(&now);
-            lastShown = seconds;
-        }
-    }
+    bool shown = RenderOwnRows(scene, settings, &queue, image, &perThread[0]);
     for (std::thread &w : workers)
         w.join();
-    if (lastShown > 0) {
+    if (shown) {
         RenderProgress end = {1, 0, 0, true};
         settings->progress(&end);
     }
