@@ -82,7 +82,7 @@ for scene in scenes/grade/*.scene; do
     report=$("$ray" --compare "$reference" "$image" --tolerance 4 2>&1)
     count=$(printf '%s\n' "$report" | sed -n 's/^pixels over tolerance [0-9.]*: \([0-9]*\) of \([0-9]*\).*/\1 \2/p')
     if [ -z "$count" ]; then
-        echo "FAIL  $name: no image to compare ($(printf '%s\n' "$report" | tail -n 1))"
+        echo "FAIL  $name: the image cannot be compared with rt's ($(printf '%s\n' "$report" | tail -n 1))"
         failed=$((failed + 1))
         continue
     fi
