@@ -1,6 +1,7 @@
 # rt -- a teaching ray tracer. `make` builds ./ray (double) and ./ray_float (float);
-# `make test` runs every test; `make bench` measures speed and accuracy into build/bench/ (and
-# `make bench-publish` copies a run into docs/bench/); `make sanitize` runs the tests under
+# `make test` runs every test; `make starter` writes the student kit; `make grade` grades a
+# tracer; `make bench` measures speed and accuracy into build/bench/ (and `make bench-publish`
+# copies a run into docs/bench/); `make sanitize` runs the tests under
 # AddressSanitizer and UndefinedBehaviorSanitizer; `make clean` removes every product.
 
 # Parallel by default: one job a core, unless -j was given. (GNU make 4; the make 3.81 of macOS
@@ -82,7 +83,8 @@ build/float/run_tests: $(call objs,build/float/tests,$(PER_BUILD_TESTS)) $(SHARE
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
 test: all build/double/run_tests build/float/run_tests build/tiny
-	@sh tests/run.sh build/double/run_tests build/float/run_tests tests/recipe.sh tests/grade.sh
+	@CXX="$(CXX)" sh tests/run.sh build/double/run_tests build/float/run_tests tests/recipe.sh \
+	    tests/grade.sh tests/starter.sh
 
 check: test
 
@@ -147,6 +149,12 @@ build/student: bench/student.cpp
 bench: ray ray_float build/double/rtbench build/float/rtbench build/student build/make_mesh
 	@sh bench/bench.sh
 
+# The student kit: build/starter/rt-starter and build/starter/rt-starter.tar.gz, rt's teaching core
+# with the functions tools/starter/stubs.list names as stubs, and without robust/ and fast/
+# (tools/starter.sh).
+starter:
+	@sh tools/starter.sh build/starter
+
 # The grader: `make grade TRACER=PROGRAM` runs PROGRAM on each grading scene (scenes/grade/) and
 # compares its images with rt's; `make grade IMAGES=DIR` grades a folder of images. build/tiny is
 # a tiny tracer with a bug on demand (tests/grade/tiny.cpp): the grader names a failing scene's
@@ -175,6 +183,6 @@ bench-publish:
 clean:
 	rm -rf build ray ray_float
 
-.PHONY: all test check check-core grade sanitize fuzz bench bench-publish clean
+.PHONY: all test check check-core starter grade sanitize fuzz bench bench-publish clean
 
 -include $(wildcard build/*/*.d build/*/*/*.d)

@@ -9,31 +9,21 @@
 // honest bound on that point's error, for the rays that leave it, and no hit where the point is
 // not a number. Compiled with -ffp-contract=off: see the Makefile.
 #include "ray.h"
+// starter: begin kit-robust-include
 #include "robust/robust.h"
+// starter: end
 
 #include <algorithm>
 
 // ---- spheres -------------------------------------------------------------------------------
 
-// The assignment handout's sphere test, as the slide writes it: A t^2 + B t + C = 0 with
-// A = d.d, B = 2 d.(o - c), C = (o - c).(o - c) - r^2; no hit if B^2 - 4AC < 0; else the least root
-// above tMin (the second handout: the least non-negative one), and the point o + t d. It loses a
-// small sphere far away (C swallows r^2) and the near root of a big one (-B + sqrt cancels).
-// Its point's honest error bound is measured, not assumed: how far o + t d is from the sphere.
-bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
-    vec3 d = ray->dir, oc = ray->origin - s->center;
-    real A = Dot(d, d);
-    real B = 2 * Dot(d, oc);
-    real C = Dot(oc, oc) - s->radius * s->radius;
-    real discriminant = B * B - 4 * A * C;
-    if (!(discriminant >= 0) || !(A > 0))
-        return false;
-    real t = (-B - std::sqrt(discriminant)) / (2 * A);
-    if (!(t > tMin))
-        t = (-B + std::sqrt(discriminant)) / (2 * A);
-    if (!(t > tMin && t < tMax))
-        return false;
-    vec3 point = ray->origin + t * d, local = point - s->center;
+// The hit record of a handout sphere test at ray parameter t: the point o + t d, as a student
+// computes it, the normal (p - c) / r turned toward the ray, and the point's honest error bound,
+// measured, not assumed: how far o + t d is from the sphere. False (and *hit untouched) for a
+// point beyond the range of numbers, where the quadratic has no answer.
+[[maybe_unused]] static bool SetHandoutSphereHit(const Sphere *s, const Ray *ray, real t,
+                                                 RayHit *hit) {
+    vec3 point = ray->origin + t * ray->dir, local = point - s->center;
     vec3 normal = (1 / s->radius) * local;
     real offSphere = std::fabs(SafeLength(local) - s->radius) + Gamma(4) * SafeLength(local);
     if (!IsFinite(point) || !IsFinite(normal) || !std::isfinite(offSphere))
@@ -48,6 +38,30 @@ bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tM
     return true;
 }
 
+// The assignment handout's sphere test, as the slide writes it: A t^2 + B t + C = 0 with
+// A = d.d, B = 2 d.(o - c), C = (o - c).(o - c) - r^2; no hit if B^2 - 4AC < 0; else the least root
+// above tMin (the second handout: the least non-negative one), and the point o + t d. It loses a
+// small sphere far away (C swallows r^2) and the near root of a big one (-B + sqrt cancels).
+// SetHandoutSphereHit writes the hit record.
+bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
+    // starter: begin sphere
+    vec3 d = ray->dir, oc = ray->origin - s->center;
+    real A = Dot(d, d);
+    real B = 2 * Dot(d, oc);
+    real C = Dot(oc, oc) - s->radius * s->radius;
+    real discriminant = B * B - 4 * A * C;
+    if (!(discriminant >= 0) || !(A > 0))
+        return false;
+    real t = (-B - std::sqrt(discriminant)) / (2 * A);
+    if (!(t > tMin))
+        t = (-B + std::sqrt(discriminant)) / (2 * A);
+    if (!(t > tMin && t < tMax))
+        return false;
+    return SetHandoutSphereHit(s, ray, t, hit);
+    // starter: end
+}
+
+// starter: begin kit-stable-sphere
 // The quadratic's discriminant halfB^2 - A C in the form A r^2 - |f x d|^2 (see SolveSphere):
 // |f x d| / |d| is how far the ray's line passes from the centre, so it is negative exactly
 // when the line misses the sphere.
@@ -174,6 +188,7 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
     hit->awayShare = 0; // never passed over
     return true;
 }
+// starter: end
 
 // ---- triangles: the handouts' forms (rt's own, watertight: robust/watertight.cpp) ----------
 
@@ -181,7 +196,8 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
 // computes it, and its honest error bound, measured: how far that point is from the triangle's
 // plane, plus its own rounding. False (and *hit untouched) for a triangle with no area, or a
 // point that is not a number.
-static bool SetHandoutTriangleHit(const Triangle *tri, const Ray *ray, real t, RayHit *hit) {
+[[maybe_unused]] static bool SetHandoutTriangleHit(const Triangle *tri, const Ray *ray, real t,
+                                                   RayHit *hit) {
     vec3 unit = SafeNormalize(Cross(tri->b - tri->a, tri->c - tri->a));
     vec3 p = ray->origin + t * ray->dir;
     real offPlane =
@@ -205,6 +221,7 @@ static bool SetHandoutTriangleHit(const Triangle *tri, const Ray *ray, real t, R
 // (robust/watertight.cpp) is.
 bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                              RayHit *hit) {
+    // starter: begin cramer
     vec3 a = tri->a, b = tri->b, c = tri->c, e = ray->origin, d = ray->dir;
     real A = a.x - b.x, B = a.y - b.y, C = a.z - b.z;
     real D = a.x - c.x, E = a.y - c.y, F = a.z - c.z;
@@ -230,6 +247,7 @@ bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, rea
         return false;
 
     return SetHandoutTriangleHit(tri, ray, t, hit);
+    // starter: end
 }
 
 // The second handout's triangle test, in two steps. First the plane: n = (b - a) x (c - a) and
@@ -243,6 +261,7 @@ bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, rea
 // o + t d is from the plane, plus its own rounding.
 bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                             RayHit *hit) {
+    // starter: begin plane
     vec3 a = tri->a, b = tri->b, c = tri->c;
     vec3 n = Cross(b - a, c - a);
     real nDotD = Dot(n, ray->dir);
@@ -260,25 +279,30 @@ bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real
         Component(Cross(a - c, p - c), k) * nk < 0)
         return false;
     return SetHandoutTriangleHit(tri, ray, t, hit);
+    // starter: end
 }
 
 // ---- the nearest hit over the list of shapes ----------------------------------------------
 
 // One sphere, and one triangle, by the chosen method.
-static bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, real tMin, real tMax,
-                      RayHit *hit) {
+[[maybe_unused]] static bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, real tMin,
+                                       real tMax, RayHit *hit) {
+    // starter: begin kit-hit-sphere
     if (methods.sphere == SPHERE_TEXTBOOK)
         return IntersectSphereTextbook(s, ray, tMin, tMax, hit);
     return IntersectSphere(s, ray, tMin, tMax, hit);
+    // starter: end
 }
 
-static bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray, real tMin, real tMax,
-                        RayHit *hit) {
+[[maybe_unused]] static bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray,
+                                         real tMin, real tMax, RayHit *hit) {
     if (methods.triangle == TRIANGLE_CRAMER)
         return IntersectTriangleCramer(tri, ray, tMin, tMax, hit);
     if (methods.triangle == TRIANGLE_PLANE)
         return IntersectTrianglePlane(tri, ray, tMin, tMax, hit);
+    // starter: begin kit-hit-triangle
     return IntersectTriangle(tri, ray, tMin, tMax, hit);
+    // starter: end
 }
 
 // The second handout's nearest hit over the list of shapes: every hit shrinks tMax, so each
@@ -289,6 +313,7 @@ static bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray, re
 // writes *hit.
 static bool HitList(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from,
                     real tMin, real tMax, bool anyHit, RayHit *hit) {
+    // starter: begin nearest-hit
     bool found = false;
     for (int i = 0; i < (int)scene->spheres.size(); i++) {
         if ((from->shape == SHAPE_SPHERE && i == from->index) ||
@@ -311,24 +336,29 @@ static bool HitList(const Scene *scene, Methods methods, const Ray *ray, const S
             return true;
     }
     return found;
+    // starter: end
 }
 
 bool SearchList(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from, real tMax,
                 bool anyHit, RayHit *hit) {
+    // starter: begin kit-search-list
     ScaledRay s; // robust: a direction of 1e-200 or 1e200 rescaled, so no test squares it
     if (!ScaleRay(ray, from->tMin, tMax, &s))
         return false;
     bool found = HitList(scene, methods, SearchedRay(&s, ray), from, s.tMin, s.tMax, anyHit, hit);
     return found && ScaleBack(&s, from->tMin, tMax, hit);
+    // starter: end
 }
 
 // Every search: the list above, or the same answer found faster by the speed machinery that main
 // may install.
 static inline bool Search(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from,
                           real tMax, bool anyHit, RayHit *hit) {
+    // starter: begin kit-seam
     const Accelerator *fast = scene->accelerator;
     if (fast) // fast: main's speed machinery (fast/), SearchList's very answer
         return fast->search(fast, scene, methods, ray, from, tMax, anyHit, hit);
+    // starter: end
     return SearchList(scene, methods, ray, from, tMax, anyHit, hit);
 }
 
@@ -358,9 +388,11 @@ bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const SelfH
 void FindEyeRayHits(const Scene *scene, Methods methods, const Ray *rays, int count, RayHit *hits,
                     bool *found) {
     bool answered[kEyeRaysTogether] = {};
+    // starter: begin kit-eye-rays
     const Accelerator *fast = scene->accelerator;
     if (fast) // fast: rays that go nearly the same way, searched together (a packet)
         fast->eyeRays(fast, scene, methods, rays, count, hits, found, answered);
+    // starter: end
     for (int k = 0; k < count; k++)
         if (!answered[k])
             found[k] = FindNearestHit(scene, methods, &rays[k], 0, kInfinity, &hits[k]);
@@ -380,10 +412,14 @@ void LeaveSurface(const Scene *scene, const RayHit *hit, vec3 dir, const Methods
     *from = kNoSelfHit;
     ray->dir = dir;
     ray->origin = hit->point;
+    // starter: begin kit-leave-surface
     if (methods->selfHit == SELF_HIT_BOUND) { // handout: skip the shape left, or t_min = 0.001
         ray->origin = LeavingPoint(scene, hit, dir); // robust: off the surface, in from its edges
         *from = StartLeaving(hit, dir, dir);
-    } else if (methods->selfHit == SELF_HIT_EPSILON) {
+        return;
+    }
+    // starter: end
+    if (methods->selfHit == SELF_HIT_EPSILON) {
         from->tMin = methods->epsilon / SafeLength(dir); // epsilon world units along the ray
     } else {
         from->shape = hit->shape;
@@ -398,15 +434,30 @@ void LeaveSurface(const Scene *scene, const RayHit *hit, vec3 dir, const Methods
 bool ShadowRay(const Scene *scene, const RayHit *hit, vec3 lightPosition, const Methods *methods,
                Ray *ray, SelfHit *from) {
     vec3 side = lightPosition - hit->point;
+    // starter: begin kit-shadow-ray
     if (methods->selfHit == SELF_HIT_BOUND) {
         ray->origin = LeavingPoint(scene, hit, side); // robust: as in LeaveSurface
         ray->dir = lightPosition - ray->origin;
         *from = StartLeaving(hit, side, ray->dir);
-    } else {
-        LeaveSurface(scene, hit, side, methods, ray, from);
-        ray->dir = lightPosition - ray->origin;
-        if (methods->selfHit == SELF_HIT_EPSILON)
-            from->tMin = methods->epsilon / SafeLength(ray->dir);
+        return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
     }
+    // starter: end
+    LeaveSurface(scene, hit, side, methods, ray, from);
+    ray->dir = lightPosition - ray->origin;
+    if (methods->selfHit == SELF_HIT_EPSILON)
+        from->tMin = methods->epsilon / SafeLength(ray->dir);
     return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
+}
+
+// The handouts' hard shadow: a light is visible from a hit when nothing lies between them, that
+// is, when the shadow ray (t = 1 at the light) meets no shape at t < 1.
+bool LightVisible(const Scene *scene, const Methods *methods, const RayHit *hit,
+                  vec3 lightPosition) {
+    // starter: begin shadow
+    Ray shadow;
+    SelfHit from;
+    if (!ShadowRay(scene, hit, lightPosition, methods, &shadow, &from))
+        return true; // the light is where the ray starts: nothing can be in between
+    return !AnyHitFrom(scene, *methods, &shadow, &from, 1);
+    // starter: end
 }

@@ -6,7 +6,9 @@
 // tree, compare two images. Errors are values until they reach main, which prints one line
 // `ray: MESSAGE` and exits with 2 (bad usage or input) or 3 (I/O).
 #include "app/app.h"
+// starter: begin kit-fast-include
 #include "fast/fast.h"
+// starter: end
 
 #include <cerrno>
 #include <chrono>
@@ -16,7 +18,9 @@
 #include <new>
 #include <sys/stat.h>
 
+// starter: begin kit-layout-words
 static_assert(LAYOUT_PLAIN == kPlainLayout, "--layout's words in LayoutChoice's order");
+// starter: end
 
 // The scenes built in C++ (the scene_*.cpp files, which the Makefile compiles, all of them), by
 // the name the command line gives them, and the image each writes by default. A scene of your
@@ -73,8 +77,8 @@ static double SecondsSince(std::chrono::steady_clock::time_point start) {
 // A render (or --view) to the output file, which is checked before the render, so a mistake in it
 // costs no time. Returns the exit code.
 static int RenderToFile(const Options *opt, const Scene *scene, const RenderSettings *settings,
-                        const std::string &defaultOutput, const SceneLayout *layout,
-                        double commitSeconds, std::chrono::steady_clock::time_point start) {
+                        const std::string &defaultOutput, const std::string &layoutText,
+                        std::chrono::steady_clock::time_point start) {
     std::string output, error;
     int status;
     if (!ChooseOutput(opt, scene, !IsBuiltIn(opt->scene), defaultOutput, &output, &status))
@@ -94,7 +98,7 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
         return 3;
     }
     if (opt->stats) {
-        fprintf(stderr, "%s\n", DescribeLayout(scene, layout, commitSeconds).c_str());
+        fprintf(stderr, "%s\n", layoutText.c_str());
         PrintStats(&stats, settings, threads, renderSeconds, SecondsSince(start));
     }
     return 0;
@@ -132,7 +136,9 @@ static int Run(int argc, char **argv) {
         if (opt.help)
             fputs(kUsage, stdout);
         else // (the kernels: which form of fast/'s search this build and processor run)
+            // starter: begin kit-version
             printf("%s\nkernels: %s\n", kVersion, KernelName());
+        // starter: end
         return 0;
     }
     if (opt.compare)
@@ -144,17 +150,19 @@ static int Run(int argc, char **argv) {
     // The speed machinery, for the robust tests only (the handouts' methods are the plain loop,
     // as written): the scene committed, its BVH built on as many threads as the render runs on
     // (two at most), and its accelerator installed in the scene
+    // starter: begin kit-commit
     SceneLayout layout;
     auto commitStart = std::chrono::steady_clock::now();
     if (settings.methods.triangle == TRIANGLE_WATERTIGHT &&
         settings.methods.sphere == SPHERE_STABLE)
         CommitScene(&scene, (LayoutChoice)opt.layout, settings.threads, &layout);
-    double commitSeconds = SecondsSince(commitStart);
+    std::string layoutText = DescribeLayout(&scene, &layout, SecondsSince(commitStart));
+    // starter: end
     if (opt.probeRay || !opt.raysFile.empty())
         return ProbeMode(&opt, &scene, &settings);
     if (opt.pixel)
         return PixelTreeMode(&opt, &scene, &settings);
-    return RenderToFile(&opt, &scene, &settings, defaultOutput, &layout, commitSeconds, start);
+    return RenderToFile(&opt, &scene, &settings, defaultOutput, layoutText, start);
 }
 
 // Whether all that was printed reached standard output; false with *why where some could not

@@ -9,6 +9,7 @@
 //   GetRay                         the assignment's camera                   camera.cpp
 //   FindNearestHit, AnyHit         the nearest hit over the list of shapes;  geometry.cpp
 //                                  a shadow ray's any hit
+//   LightVisible                   the hard shadow of a point light          geometry.cpp
 //   IntersectSphere,               a ray and one shape (the handouts' own    geometry.cpp,
 //   IntersectTriangle              forms beside them: *Textbook, *Cramer,    robust/
 //                                  *Plane)
@@ -295,6 +296,11 @@ void LeaveSurface(const Scene *scene, const RayHit *hit, vec3 dir, const Methods
 // is where the ray starts, where nothing can be in between.
 bool ShadowRay(const Scene *scene, const RayHit *hit, vec3 lightPosition, const Methods *methods,
                Ray *ray, SelfHit *from);
+
+// The assignment's hard shadow: true if nothing lies between the hit and a light at
+// lightPosition (the shadow ray meets no shape at t < 1).
+bool LightVisible(const Scene *scene, const Methods *methods, const RayHit *hit,
+                  vec3 lightPosition);
 
 // ---- the seam: speed machinery that main may install (fast/) --------------------------------
 

@@ -52,36 +52,33 @@ struct Surface {
     RayChain chain;
 };
 
-// Whether the segment from the hit point to the light is free of shapes (ShadowRay: every hit
-// with t in (tMin, 1) blocks): the assignment's hard shadow. Without shapes that could block
-// (Effects), no ray is needed.
-static bool LightIsVisible(const Shading *sh, const RayHit *hit, const Light *light) {
+// Whether the light shines on the hit: the assignment's hard shadow (LightVisible, geometry.cpp),
+// counted as one shadow ray. Without shapes that could block (Effects), no ray is needed.
+// Recording a ray tree, the shadow ray is recorded too, with the nearest shape that blocks it.
+[[maybe_unused]] static bool LightIsVisible(const Shading *sh, const RayHit *hit,
+                                            const Light *light) {
     const Methods *methods = &sh->settings->methods;
-    Ray shadow;
-    SelfHit from;
-    if (!sh->settings->effects.shadows ||
-        !ShadowRay(sh->scene, hit, light->position, methods, &shadow, &from))
+    if (!sh->settings->effects.shadows)
         return true;
     sh->log->stats.shadow++;
-    if (!sh->log->tree) {
-        bool blocked = AnyHitFrom(sh->scene, *methods, &shadow, &from, 1);
-        if (sh->settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads it
-            sh->log->surfaces = MixSurface(sh->log->surfaces, blocked);
-        return !blocked;
+    bool visible = LightVisible(sh->scene, methods, hit, light->position);
+    if (sh->settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads it
+        sh->log->surfaces = MixSurface(sh->log->surfaces, !visible);
+    Ray shadow;
+    SelfHit from;
+    if (sh->log->tree && ShadowRay(sh->scene, hit, light->position, methods, &shadow, &from)) {
+        RayNode *n = &(*sh->log->tree)[RecordRay(RAY_SHADOW, &shadow, sh->log)];
+        n->hit = FindNearestHitFrom(sh->scene, *methods, &shadow, &from, 1, &n->record);
+        n->light = visible ? light->intensity : color{0, 0, 0};
     }
-
-    // Recording a ray tree: find the nearest blocker, so the tree can show which shape it is
-    int node = RecordRay(RAY_SHADOW, &shadow, sh->log);
-    RayNode *n = &(*sh->log->tree)[node];
-    n->hit = FindNearestHitFrom(sh->scene, *methods, &shadow, &from, 1, &n->record);
-    n->light = n->hit ? color{0, 0, 0} : light->intensity;
-    return !n->hit;
+    return visible;
 }
 
 // The assignment handout's rule (`shading floor`): kd * max(ambient, S), where S sums I (N.L)
 // over the lights in front of the surface that no shape hides. A light behind the surface
 // (N.L <= 0) contributes nothing and costs no shadow ray (second handout).
 static color FloorColor(const Shading *sh, const Surface *s) {
+    // starter: begin floor
     const RayHit *hit = s->hit;
     real a = sh->scene->ambient; // handout: kd * max(ambient, N.L)
     if (!LightsCanShow(sh->scene, s->m, sh->settings->effects.lightSum))
@@ -97,6 +94,7 @@ static color FloorColor(const Shading *sh, const Surface *s) {
         sum = sum + (nDotL / SafeLength(toLight)) * light.intensity; // handout: N.normalize(L)
     }
     return s->m->diffuse * color{std::max(a, sum.x), std::max(a, sum.y), std::max(a, sum.z)};
+    // starter: end
 }
 
 // The second handout's Phong lighting (`shading phong`):
@@ -105,6 +103,7 @@ static color FloorColor(const Shading *sh, const Surface *s) {
 // The N.L > 0 gate keeps a light below the horizon from making a highlight; max(0, R.V) before
 // pow keeps a fractional n from meeting a negative base (a NaN).
 static color PhongColor(const Shading *sh, const Surface *s) {
+    // starter: begin phong
     const Material *m = s->m;
     color result = sh->scene->ambient * m->ambient;
     vec3 n = s->hit->normal, v = -SafeNormalize(s->ray->dir);
@@ -128,6 +127,7 @@ static color PhongColor(const Shading *sh, const Surface *s) {
         result = result + light.intensity * term;
     }
     return result;
+    // starter: end
 }
 
 // cos(t), the cosine of the refracted angle, for cos(i) and eta = n1 / n2; false under total
@@ -159,12 +159,14 @@ static bool RefractedCosine(real cosI, real eta, real *cosT) {
 // Returns false, and leaves *t alone, for total internal reflection (sin(t) >= 1). The cosine is
 // clamped to [0, 1] because d.n of unit vectors can round past 1.
 bool Refract(vec3 d, vec3 n, real eta, vec3 *t) {
+    // starter: begin refraction
     real cosI = std::min(real(1), std::max(real(0), -Dot(d, n)));
     real cosT;
     if (!RefractedCosine(cosI, eta, &cosT))
         return false;
     *t = eta * d + (eta * cosI - cosT) * n; // journal: r_out_perp + r_out_parallel
     return true;
+    // starter: end
 }
 
 // The exact Fresnel reflectance of a clear dielectric for unpolarised light, the average of the
@@ -204,7 +206,11 @@ real SchlickReflectance(real cosI, real eta) {
 // the Fresnel weight), must be able to change the pixel (kMinRayWeight). Otherwise black.
 static color FollowRay(const Shading *sh, const Surface *s, RayKind kind, vec3 dir, real share) {
     RayChain next = {s->chain.number + 1, s->chain.weight * share};
-    if (next.number > sh->settings->depth || next.weight < kMinRayWeight)
+    // starter: begin depth
+    if (next.number > sh->settings->depth) // the assignment: at most `depth` rays in a chain
+        return {0, 0, 0};
+    // starter: end
+    if (next.weight < kMinRayWeight)
         return {0, 0, 0};
     Ray ray;
     SelfHit from;

@@ -132,7 +132,9 @@ static bool ParseSelfHit(const std::string &word, Options *opt, std::string *err
 }
 
 Methods ChosenMethods(const Options *opt) {
+    // starter: begin kit-methods
     Methods m = opt->methodSet == 1 ? kHandoutMethods : kRobustMethods;
+    // starter: end
     if (opt->sphere >= 0)
         m.sphere = (SphereMethod)opt->sphere;
     if (opt->triangle >= 0)
@@ -309,12 +311,14 @@ static bool CheckCombinations(const Options *opt, const std::string &seen, std::
         return false;
     }
     Methods methods = ChosenMethods(opt);
+    // starter: begin kit-layout-check
     if (seen.find(" --layout ") != std::string::npos && opt->layout != kPlainLayout &&
         (methods.triangle != TRIANGLE_WATERTIGHT || methods.sphere != SPHERE_STABLE)) {
         *error = "--layout auto, list and bvh go with the robust sphere and triangle tests: the "
                  "handouts' tests run in the plain loop, as written";
         return false;
     }
+    // starter: end
     if (!opt->output.empty() && (opt->probeRay || opt->pixel || !opt->raysFile.empty())) {
         *error = "-o goes with a render, --view or --compare; probes print to standard output";
         return false;

@@ -106,5 +106,15 @@ void TestPath();
 void TestMesh();
 void TestMeshRays();
 void TestLeaks();
+void TestHandout();
+
+// The handouts' steps checked as their debugging advice puts it (test_handout.cpp), a group a
+// step, named as a starter kit's stubs.list names the function a student writes.
+struct HandoutGroup {
+    const char *name;
+    void (*run)();
+};
+extern const HandoutGroup kHandoutGroups[];
+extern const int kHandoutGroupCount;
 
 #endif

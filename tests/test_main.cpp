@@ -115,6 +115,7 @@ static const struct {
     {"mesh", TestMesh},
     {"mesh_rays", TestMeshRays},
     {"leaks", TestLeaks},
+    {"handout", TestHandout},
     {"probes", TestProbes},
     {"program", TestProgram},
     {"corpus", TestCorpus},

@@ -1,0 +1,60 @@
+#!/bin/sh
+# The starter kit (`make starter`, tools/starter.sh) as a student and a teacher meet it: unpacked
+# from its .tar.gz on its own, it builds with no warning, draws the assignment's background, and
+# its `make test` fails on the stubs with the handouts' advice; with rt's bodies in place of the
+# stubs (--solved) it builds with no warning, passes every check, and draws rt's own image under
+# the handouts' methods, byte for byte. Ends with `N passed, M failed`.
+set -u
+passed=0 failed=0
+check() { # check STATUS TEXT: STATUS 0 passes
+    if [ "$1" -eq 0 ]; then passed=$((passed + 1)); else failed=$((failed + 1)) && echo "tests/starter.sh: FAILED $2"; fi
+}
+root=$(pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# kitmake DIR ARGS: make in a kit, with the compiler rt's make test was given ($CXX), on its own
+# (MAKEFLAGS cleared: not a part of rt's make), quickly (-O0)
+kitmake() {
+    dir=$1
+    shift
+    (cd "$dir" && MAKEFLAGS= make CXX="${CXX:-g++}" CXXFLAGS=-O0 "$@")
+}
+build() { kitmake "$1" >"$1/build.log" 2>&1; }
+
+sh tools/starter.sh "$work/made" >/dev/null 2>"$work/made.err"
+check $? "tools/starter.sh writes the kit: $(cat "$work/made.err")"
+mkdir -p "$work/student" && (cd "$work/student" && tar xzf "$work/made/rt-starter.tar.gz")
+kit=$work/student/rt-starter
+build "$kit"
+check $? "the kit builds from its .tar.gz: $(tail -5 "$kit/build.log")"
+! grep -q "warning:" "$kit/build.log"
+check $? "the kit builds with no warning: $(grep "warning:" "$kit/build.log" | head -3)"
+for wing in robust fast; do
+    [ ! -e "$kit/$wing" ] && ! grep -q "#include \".*$wing/" "$kit"/*.cpp "$kit"/*.h "$kit"/app/*
+    check $? "the kit has no $wing/ and includes nothing from it"
+done
+printf 'P6\n512 512\n255\n' >"$work/black.ppm" && head -c 786432 /dev/zero >>"$work/black.ppm"
+(cd "$kit" && ./ray >/dev/null 2>&1 && "$root/ray" --compare reference.png "$work/black.ppm" >/dev/null)
+check $? "./ray in the kit draws the assignment's background, black, on the first day"
+out=$(kitmake "$kit" test 2>&1)
+status=$?
+last=$(printf '%s\n' "$out" | grep -E '^[0-9]+ passed, [0-9]+ failed$' | tail -n 1)
+case $last in *" passed, "*" failed") r=0 ;; *) r=1 ;; esac
+check $r "the kit's make test ends with N passed, M failed: $last"
+[ $status -ne 0 ] && [ "${last#* passed, 0 failed}" = "$last" ]
+check $? "the kit's make test fails on the stubs: $last"
+printf '%s\n' "$out" | grep -q "you report t = \|you report no hit: check B = 2 d.(o - c)"
+check $? "a failing check of the sphere says what it should give, what came, and the likely cause"
+
+sh tools/starter.sh "$work/solved" --solved >/dev/null
+solved=$work/solved/rt-starter
+build "$solved"
+! grep -q "warning:" "$solved/build.log"
+check $? "rt's bodies in the kit build with no warning: $(grep "warning:" "$solved/build.log" | head -3)"
+out=$(kitmake "$solved" test 2>&1)
+check $? "rt's bodies pass every check of the kit: $(printf '%s\n' "$out" | grep -v "^== " | tail -5)"
+(cd "$solved" && ./ray -o "$work/kit.png" >/dev/null 2>&1) && "$root/ray" --methods handout -o "$work/rt.png" >/dev/null 2>&1 &&
+    "$root/ray" --compare "$work/kit.png" "$work/rt.png" >/dev/null
+check $? "the solved kit draws rt's image under the handouts' methods, byte for byte"
+echo "$passed passed, $failed failed"
