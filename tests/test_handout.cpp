@@ -223,6 +223,20 @@ static void TestShadow() {
            "you say the light is hidden", "shadow acne: the ray hits the ball it starts on");
 }
 
+// The colour one ray brings back from `scene`, traced as a render in the handouts' methods traces
+// it (*stats: the rays it took, if asked).
+static color TraceOne(const Scene *scene, Ray ray, RayStats *stats) {
+    RenderSettings settings = {};
+    settings.width = settings.height = 8, settings.samplesPerPixel = 1;
+    settings.depth = scene->depth, settings.threads = 1, settings.methods = kHandoutMethods;
+    PlanRender(scene, &settings);
+    TraceLog log = {{}, nullptr, -1, 0};
+    color c = TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
+    if (stats)
+        *stats = log.stats;
+    return c;
+}
+
 // ---- the floor shading --------------------------------------------------------------------------
 
 // The colour seen straight down at the floor's point (0, 0, 0), lit from `light`.
@@ -232,13 +246,8 @@ static color FloorSeen(vec3 light) {
     scene.materials = {Plain({1, 0.5, 0.25})};
     scene.triangles = {{{-10, 0, 10}, {10, 0, 10}, {0, 0, -10}, 0}};
     scene.lights = {{light, {1, 1, 1}}};
-    RenderSettings settings = {};
-    settings.width = settings.height = 8, settings.samplesPerPixel = 1, settings.depth = 10;
-    settings.threads = 1, settings.methods = kHandoutMethods;
-    PlanRender(&scene, &settings);
-    TraceLog log = {{}, nullptr, -1, 0};
     Ray ray = {{0, 1, 0}, {0, -1, 0}};
-    return TraceRay(&scene, &settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
+    return TraceOne(&scene, ray, nullptr);
 }
 
 static void TestFloor() {
@@ -286,14 +295,10 @@ static uint64_t MirrorChain(int depth) {
     scene.triangles = {{{-10, -10, -1}, {10, -10, -1}, {0, 10, -1}, 0},
                        {{-10, -10, 1}, {0, 10, 1}, {10, -10, 1}, 0}};
     scene.depth = depth;
-    RenderSettings settings = {};
-    settings.width = settings.height = 8, settings.samplesPerPixel = 1, settings.depth = depth;
-    settings.threads = 1, settings.methods = kHandoutMethods;
-    PlanRender(&scene, &settings);
-    TraceLog log = {{}, nullptr, -1, 0};
     Ray ray = {{0, 0, 0}, {0, 0, -1}};
-    TraceRay(&scene, &settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
-    return log.stats.reflection;
+    RayStats stats;
+    TraceOne(&scene, ray, &stats);
+    return stats.reflection;
 }
 
 static void TestDepth() {
@@ -322,13 +327,8 @@ static void TestPhong() {
     scene.materials = {m};
     scene.triangles = {{{-10, 0, 10}, {10, 0, 10}, {0, 0, -10}, 0}};
     scene.lights = {{{0, 4, 0}, {1, 1, 1}}};
-    RenderSettings settings = {};
-    settings.width = settings.height = 8, settings.samplesPerPixel = 1, settings.depth = 10;
-    settings.threads = 1, settings.methods = kHandoutMethods;
-    PlanRender(&scene, &settings);
-    TraceLog log = {{}, nullptr, -1, 0};
     Ray ray = {{0, 1, 0}, {0, -1, 0}};
-    color c = TraceRay(&scene, &settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
+    color c = TraceOne(&scene, ray, nullptr);
     // ka Ia + I (kd N.L + ks (R.V)^n) = 0.1 + (0.5 + 0.5) = 1.1 in every channel
     ADVISE(Near(c, {1.1, 1.1, 1.1}),
            "Phong, light and eye straight above: ka Ia + kd + ks = 0.1 + 0.5 + 0.5 = 1.1",
