@@ -59,9 +59,8 @@ nearest() {
     echo "$best"
 }
 
-failed=0 total=0
+failed=0
 for scene in scenes/grade/*.scene; do
-    total=$((total + 1))
     name=$(basename "$scene" .scene)
     reference=$out/reference/$name.png
     "$ray" "$scene" --methods handout -o "$reference" || exit 2
@@ -100,13 +99,7 @@ for scene in scenes/grade/*.scene; do
     else
         looks="unlike every bug the grader knows ($(sed -n 's/^# reveals: //p' "$scene") is what the scene is made for)"
     fi
-    echo "FAIL  $name: $1 of $2 pixels differ, the worst at ${worst% }: $looks"
     first=$(printf '%s\n' "$report" | sed -n 's/^  \([0-9]*\) \([0-9]*\):.*/\1 \2/p' | head -n 1)
-    echo "      follow one: $ray $scene --methods handout --pixel $first"
+    echo "FAIL  $name: $1 of $2 pixels differ, the worst at ${worst% }: $looks (follow one: $ray $scene --methods handout --pixel $first)"
 done
-if [ $failed -eq 0 ]; then
-    echo "every scene passes"
-    exit 0
-fi
-echo "$failed of $total scenes fail"
-exit 1
+[ $failed -eq 0 ]
