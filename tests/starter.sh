@@ -3,7 +3,8 @@
 # from its .tar.gz on its own, it builds with no warning, draws the assignment's background, and
 # its `make test` fails on the stubs with the handouts' advice; with rt's bodies in place of the
 # stubs (--solved) it builds with no warning, passes every check, and draws rt's own image under
-# the handouts' methods, byte for byte. Ends with `N passed, M failed`.
+# the handouts' methods, byte for byte; and a kit that keeps robust/ and fast/ (--with-wings),
+# solved, draws rt's own default image. Ends with `N passed, M failed`.
 set -u
 passed=0 failed=0
 check() { # check STATUS TEXT: STATUS 0 passes
@@ -57,4 +58,12 @@ check $? "rt's bodies pass every check of the kit: $(printf '%s\n' "$out" | grep
 (cd "$solved" && ./ray -o "$work/kit.png" >/dev/null 2>&1) && "$root/ray" --methods handout -o "$work/rt.png" >/dev/null 2>&1 &&
     "$root/ray" --compare "$work/kit.png" "$work/rt.png" >/dev/null
 check $? "the solved kit draws rt's image under the handouts' methods, byte for byte"
+
+sh tools/starter.sh "$work/wings" --solved --with-wings >/dev/null
+wings=$work/wings/rt-starter
+build "$wings"
+! grep -q "warning:" "$wings/build.log" && (cd "$wings" && ./ray -o "$work/wings.png" >/dev/null 2>&1) &&
+    "$root/ray" -o "$work/rt-default.png" >/dev/null 2>&1 &&
+    "$root/ray" --compare "$work/wings.png" "$work/rt-default.png" >/dev/null
+check $? "a kit with robust/ and fast/, solved, builds with no warning and draws rt's own image"
 echo "$passed passed, $failed failed"

@@ -3,7 +3,8 @@
 # `// starter: begin NAME` ... `// starter: end` becomes NAME's section where NAME is one of
 # `stubs` (the names of stubs.list, each between spaces) or begins with kit-; elsewhere its lines
 # stay, without the two marker lines. solved=1 keeps every student region's lines (rt's bodies
-# in place of the stubs), for the test that they pass the kit's checks.
+# in place of the stubs), for the test that they pass the kit's checks; wings=1 keeps the kit-
+# regions, for a kit with robust/ and fast/.
 FNR == NR {
     if ($0 ~ /^@@ /) {
         name = substr($0, 4)
@@ -22,7 +23,7 @@ FNR == NR {
         failed = 1
         exit 1
     }
-    replace = region ~ /^kit-/ || (!solved && index(stubs, " " region " ") > 0)
+    replace = region ~ /^kit-/ ? !wings : !solved && index(stubs, " " region " ") > 0
     if (replace)
         printf "%s", text[region]
     inside = 1
