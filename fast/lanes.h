@@ -49,13 +49,10 @@
 #define RT_NOINLINE
 #endif
 
-// Helpers that are always inlined, so that no call passes or returns a vector (a 256-bit vector
-// passes differently with AVX than without, which GCC warns of, and -Wpsabi is that warning).
+// The helpers below are always inlined (RT_INLINE), so that no call passes or returns a vector:
+// a 256-bit vector passes differently with AVX than without, which GCC warns of (-Wpsabi).
 #if defined(__GNUC__) || defined(__clang__)
-#define RT_LANE_INLINE inline __attribute__((always_inline))
 #pragma GCC diagnostic ignored "-Wpsabi"
-#else
-#define RT_LANE_INLINE inline
 #endif
 
 #if RT_VECTORS
@@ -64,8 +61,7 @@
 #define RT_LANES(Name, T, N) typedef T Name __attribute__((vector_size((N) * sizeof(T))))
 
 // Lane by lane, a where the mask's lane is set (all ones), else b.
-template <class Mask, class V>
-static RT_LANE_INLINE V Select(const Mask &mask, const V &a, const V &b) {
+template <class Mask, class V> static RT_INLINE V Select(const Mask &mask, const V &a, const V &b) {
     return mask ? a : b;
 }
 
@@ -170,7 +166,7 @@ static inline Pack<T, N> Select(const Pack<M, N> &mask, const Pack<T, N> &a, con
 
 // Each lane converted to another lane type's numbers, as a scalar conversion would (C++'s rules:
 // toward zero from floating point to integer).
-template <class To, class From> static RT_LANE_INLINE To Convert(const From &from) {
+template <class To, class From> static RT_INLINE To Convert(const From &from) {
 #if RT_VECTORS
     return __builtin_convertvector(from, To);
 #else
@@ -182,7 +178,7 @@ template <class To, class From> static RT_LANE_INLINE To Convert(const From &fro
 }
 
 // The same bits read as another lane type of the same size (a vector cast, or memcpy).
-template <class To, class From> static RT_LANE_INLINE To Bitcast(const From &from) {
+template <class To, class From> static RT_INLINE To Bitcast(const From &from) {
     static_assert(sizeof(To) == sizeof(From), "a bit cast keeps the size");
     To to;
     memcpy(&to, &from, sizeof to);

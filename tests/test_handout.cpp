@@ -190,11 +190,14 @@ static void TestNearestHit() {
 
 // ---- the shadow --------------------------------------------------------------------------------
 
+// A floor at y = 0, facing up, wide enough for every check below; its material 0.
+const Triangle kFloor = {{-10, 0, 10}, {10, 0, 10}, {0, 0, -10}, 0};
+
 // A floor at y = 0 and a ball of radius 0.5 at (0, 2, 0); the point (0, 0, 0) on the floor.
 static void ShadowScene(Scene *scene, RayHit *floorPoint) {
     InitScene(scene);
     scene->materials = {Plain({1, 1, 1})};
-    scene->triangles = {{{-10, 0, 10}, {10, 0, 10}, {0, 0, -10}, 0}};
+    scene->triangles = {kFloor};
     scene->spheres = {{{0, 2, 0}, 0.5, 0}};
     *floorPoint = {1, {0, 0, 0}, {0, 1, 0}, true, 0, SHAPE_TRIANGLE, 0, {0, 0, 0}, 0};
 }
@@ -244,7 +247,7 @@ static color FloorSeen(vec3 light) {
     Scene scene;
     InitScene(&scene); // ambient 0.2
     scene.materials = {Plain({1, 0.5, 0.25})};
-    scene.triangles = {{{-10, 0, 10}, {10, 0, 10}, {0, 0, -10}, 0}};
+    scene.triangles = {kFloor};
     scene.lights = {{light, {1, 1, 1}}};
     Ray ray = {{0, 1, 0}, {0, -1, 0}};
     return TraceOne(&scene, ray, nullptr);
@@ -325,7 +328,7 @@ static void TestPhong() {
     Material m = Plain({0.5, 0.5, 0.5});
     m.ambient = {1, 1, 1}, m.specular = 0.5, m.shininess = 1;
     scene.materials = {m};
-    scene.triangles = {{{-10, 0, 10}, {10, 0, 10}, {0, 0, -10}, 0}};
+    scene.triangles = {kFloor};
     scene.lights = {{{0, 4, 0}, {1, 1, 1}}};
     Ray ray = {{0, 1, 0}, {0, -1, 0}};
     color c = TraceOne(&scene, ray, nullptr);
