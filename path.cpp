@@ -45,8 +45,11 @@ struct Path {
     Ray ray;       // the ray to follow
     SelfHit from;  // and what it must not hit (the surface it leaves)
     RayKind kind;
-    real scatterPdf; // the density the last diffuse bounce drew the ray with; 0: not diffuse
-    bool departs;    // the rays from this diffuse hit start at `departure` (Depart)
+    real scatterPdf;  // the density the last diffuse bounce drew the ray with; 0: not diffuse
+    vec3 scatteredAt; // and the point it was drawn at, on the shape (kind, index) below
+    ShapeKind scatteredShape;
+    int scatteredIndex;
+    bool departs; // the rays from this diffuse hit start at `departure` (Depart)
     vec3 departure;
 };
 
@@ -252,9 +255,20 @@ static color PointLights(Path *path, const RayHit *hit, color rho) {
     return (1 / kPi) * rho * sum;
 }
 
+// The cone in which emitting sphere e is seen from point x of shape (kind, index), where next-event
+// estimation draws its points in one; false where it draws them over the sphere's area: when
+// asked to, and from x on the sphere itself or inside it, where any point of it may face x.
+static bool EmitterCone(const Path *path, const Emitter *e, vec3 x, ShapeKind kind, int index,
+                        SphereCone *cone) {
+    return e->shape == SHAPE_SPHERE && path->settings->path.spheres == SPHERES_CONE &&
+           !(kind == SHAPE_SPHERE && index == e->index) &&
+           ConeOfSphere(&path->scene->spheres[e->index], x, cone);
+}
+
 // Next-event estimation for the emitting shapes: one emitter picked uniformly, one point on it
-// picked uniformly by area, its light times the BRDF and cos(theta) over the density of picking
-// it, weighted against the scattered ray's chance of finding the same point (step 2, MIS).
+// (a sphere's in the cone it is seen in, else uniform over the area), its light times the BRDF and
+// cos(theta) over the density of picking it, weighted against the scattered ray's chance of
+// finding the same point (step 2, MIS).
 static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
     const std::vector<Emitter> &emitters = path->settings->effects.emitters;
     if (emitters.empty() || path->settings->path.lights == LIGHTS_NONE)
@@ -263,7 +277,12 @@ static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
         std::min(emitters.size() - 1, (size_t)(Random(path, PICK_EMITTER) * emitters.size()));
     const Emitter *e = &emitters[k];
     vec3 p, n = e->normal;
-    if (e->shape == SHAPE_SPHERE)
+    SphereCone cone = {};
+    bool inCone = EmitterCone(path, e, hit->point, hit->shape, hit->index, &cone);
+    if (inCone)
+        p = SampleSphereCone(&path->scene->spheres[e->index], &cone,
+                             PathRandomPair(&path->sample, path->bounce, EMITTER_UV), &n);
+    else if (e->shape == SHAPE_SPHERE)
         SampleSphere(&path->scene->spheres[e->index],
                      DiskPoint(&path->sample, path->bounce, EMITTER_DISK), &p, &n);
     else
@@ -273,10 +292,11 @@ static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
     real distance = SafeLength(toPoint); // (rescaled where its square would leave the numbers)
     real cosTheta = Dot(hit->normal, toPoint) / distance;
     real cosLight = std::fabs(Dot(n, toPoint)) / distance;
-    if (!(cosTheta > 0) || !(cosLight > 0) || !Faces(path->scene, e, hit, p, n) ||
+    if (!(cosTheta > 0) || !(cosLight > 0) || (!inCone && !Faces(path->scene, e, hit, p, n)) ||
         !EmitterVisible(path, hit, e, p))
         return {0, 0, 0};
-    real pdf = EmitterPdf(emitters.size(), e->sqrtArea, distance, cosLight);
+    real pdf = inCone ? ConePdf(emitters.size(), &cone)
+                      : EmitterPdf(emitters.size(), e->sqrtArea, distance, cosLight);
     real weight = path->settings->path.lights == LIGHTS_MIS && !last // (no scattered ray follows
                       ? PowerHeuristic(pdf, ScatterPdf(path->settings->path.scatter, cosTheta))
                       : 1; // the last vertex to share the light with)
@@ -296,10 +316,13 @@ static real EmissionWeight(const Path *path, const RayHit *hit) {
     if (lights == LIGHTS_NEE)
         return 0;
     Emitter e = {hit->shape, hit->index, 0, {0, 0, 0}, {0, 0, 0}};
+    size_t count = path->settings->effects.emitters.size();
+    SphereCone cone = {};
+    if (EmitterCone(path, &e, path->scatteredAt, path->scatteredShape, path->scatteredIndex, &cone))
+        return PowerHeuristic(path->scatterPdf, ConePdf(count, &cone));
     real length = SafeLength(path->ray.dir), distance = hit->t * length;
     real cosLight = std::fabs(Dot(hit->normal, path->ray.dir)) / length;
-    real pdf = EmitterPdf(path->settings->effects.emitters.size(), EmitterSqrtArea(path->scene, &e),
-                          distance, cosLight);
+    real pdf = EmitterPdf(count, EmitterSqrtArea(path->scene, &e), distance, cosLight);
     return PowerHeuristic(path->scatterPdf, pdf);
 }
 
@@ -338,6 +361,8 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     // The estimator's factor BRDF cos / density: with cosine sampling cos / pi over cos / pi,
     // which cancels exactly, so it is rho itself (the white furnace's exact answer)
     path->scatterPdf = ScatterPdf(method, cosTheta);
+    path->scatteredAt = hit->point, path->scatteredShape = hit->shape;
+    path->scatteredIndex = hit->index;
     path->through = path->through *
                     (method == SCATTER_COSINE ? rho : (cosTheta / (kPi * path->scatterPdf)) * rho);
     path->kind = RAY_DIFFUSE;
@@ -429,9 +454,21 @@ static color FullPath(Path *path, bool foundFirst, const RayHit *firstHit) {
 
 color TraceFoundPath(const Scene *scene, const RenderSettings *settings, const Ray *primary,
                      bool found, const RayHit *hit, int i, int j, int s, TraceLog *log) {
-    Path path = {scene,      settings,    log,       PathKey(settings->path.seed, i, j, s),
-                 0,          {0, 0, 0},   {1, 1, 1}, *primary,
-                 kNoSelfHit, RAY_PRIMARY, 0,         false,
+    Path path = {scene,
+                 settings,
+                 log,
+                 PathKey(settings->path.seed, i, j, s),
+                 0,
+                 {0, 0, 0},
+                 {1, 1, 1},
+                 *primary,
+                 kNoSelfHit,
+                 RAY_PRIMARY,
+                 0,
+                 {0, 0, 0},
+                 SHAPE_SPHERE,
+                 -1,
+                 false,
                  {0, 0, 0}};
     if (settings->path.estimator == ESTIMATOR_JOURNAL)
         return JournalRay(&path, primary, RAY_PRIMARY, found, hit, 1);

@@ -131,6 +131,54 @@ static void SampleSphere(const Sphere *s, vec2 disk, vec3 *p, vec3 *n) {
     *p = s->center + s->radius * *n;
 }
 
+// The cone of directions in which an emitting sphere is seen from a point x outside it: its axis
+// (the unit vector toward the centre) and its half-angle thetaMax, sin thetaMax = r / d at a
+// distance d from the centre. Every direction in the cone meets the sphere on the cap x can see,
+// so a direction drawn uniformly in it is never wasted on the far side (pbrt-v4's
+// Sphere::Sample(ctx), after Shirley, Wang & Zimmerman, "Monte Carlo Techniques for Direct
+// Lighting Calculations", 1996). The cone's solid angle is 2 pi (1 - cos thetaMax), kept as
+// sin^2 / (1 + cos): 1 - cos alone would cancel to 0 for a small or distant sphere.
+struct SphereCone {
+    vec3 axis;
+    real sinMax, oneMinusCos;
+};
+
+// false where x is not outside the sphere (then no cone: every point of it may face x).
+static bool ConeOfSphere(const Sphere *s, vec3 x, SphereCone *cone) {
+    vec3 toCentre = s->center - x;
+    real d = SafeLength(toCentre);
+    if (!(d > s->radius))
+        return false;
+    real sinMax = s->radius / d, cosMax = std::sqrt((1 - sinMax) * (1 + sinMax));
+    *cone = {(1 / d) * toCentre, sinMax, sinMax * sinMax / (1 + cosMax)};
+    return cone->oneMinusCos > 0; // (a sphere so far that its cone underflows is not sampled)
+}
+
+// A direction drawn uniformly in the cone, from two uniform numbers (u, v), and the point where
+// it first meets the sphere, with the unit normal there. cos theta is uniform in [cos thetaMax,
+// 1] (Archimedes), drawn as 1 - cos theta = u (1 - cos thetaMax), and sin^2 theta = h (2 - h)
+// from that h, so neither cancels near the axis. The point is named by the angle alpha at the
+// centre between it and x's side: cos alpha = sin^2 theta / sin thetaMax + cos theta
+// sqrt(1 - sin^2 theta / sin^2 thetaMax) (pbrt-v4, §6.2.4), found from the triangle x, centre,
+// point by the law of sines, with no ray to cast.
+static vec3 SampleSphereCone(const Sphere *s, const SphereCone *cone, vec2 uv, vec3 *n) {
+    real h = uv.x * cone->oneMinusCos, cosTheta = 1 - h, sin2Theta = h * (2 - h);
+    real ratio = sin2Theta / (cone->sinMax * cone->sinMax); // (in [0, 1] but for rounding)
+    real cosAlpha = sin2Theta / cone->sinMax + cosTheta * std::sqrt(std::max(real(0), 1 - ratio));
+    cosAlpha = std::min(real(1), cosAlpha);
+    real sinAlpha = std::sqrt((1 - cosAlpha) * (1 + cosAlpha)), phi = 2 * kPi * uv.y;
+    vec3 t, b;
+    Basis(cone->axis, &t, &b);
+    *n = (sinAlpha * std::cos(phi)) * t + (sinAlpha * std::sin(phi)) * b - cosAlpha * cone->axis;
+    return s->center + s->radius * *n;
+}
+
+// The density, per solid angle, of drawing a direction in the cone of one of `count` emitters:
+// 1 / count for the emitter, 1 / (2 pi (1 - cos thetaMax)) for the direction.
+static real ConePdf(size_t count, const SphereCone *cone) {
+    return 1 / ((real)count * 2 * kPi * cone->oneMinusCos);
+}
+
 // A point drawn uniformly over an emitting triangle, from two uniform numbers (u, v):
 // barycentric coordinates from the square root of u, which spreads the points evenly (Shirley &
 // Chiu 1997; pbrt-v4 §A.5.4). Its normal is the emitter's.

@@ -68,6 +68,12 @@ enum LightMethod {
     LIGHTS_NEE, // next-event estimation only: a scattered ray that hits an emitter adds nothing
     LIGHTS_NONE // scattered rays only: light arrives when a path happens to hit an emitter
 };
+// How next-event estimation draws a point on an emitting sphere seen from outside it.
+enum SphereSampling {
+    SPHERES_CONE, // a direction uniform in the cone the sphere subtends: only the cap that can be
+                  // seen (the default)
+    SPHERES_AREA  // a point uniform over the whole sphere, half of which faces away
+};
 // The defaults are all zero, so `{}` asks for them.
 struct PathMethods {
     Estimator estimator;
@@ -75,6 +81,7 @@ struct PathMethods {
     LightMethod lights;
     bool noRoulette; // only `depth` ends paths (biased); else Russian roulette does (unbiased)
     int seed;        // mixed into every random number: another seed, another (equally good) noise
+    SphereSampling spheres;
 };
 
 // How far a render has come, for a progress line: the share of rows done, the rays cast a second

@@ -227,6 +227,7 @@ struct Options {
                                                               // ScatterMethod's, LightMethod's
                                                               // order; on, off
     int seed = 0;                                             // --seed (shading path)
+    int sphereLamps = 0; // --sphere-lamps (shading path): cone, area
     int sphere = -1, triangle = -1, selfHit = -1, cameraRay = -1, fresnel = -1; // -1: from the set
     real epsilon = 0; // --self-hit epsilon=E
     bool stats = false, help = false, version = false;

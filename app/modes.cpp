@@ -321,8 +321,12 @@ RenderSettings ChosenSettings(const Options *opt, const Scene *scene) {
     if (opt->view)
         settings.threads = 1; // (RenderView draws on one thread)
     settings.methods = ChosenMethods(opt);
-    settings.path = {(Estimator)opt->estimator, (ScatterMethod)opt->scatter,
-                     (LightMethod)opt->lights, opt->roulette == 1, opt->seed};
+    settings.path = {(Estimator)opt->estimator,
+                     (ScatterMethod)opt->scatter,
+                     (LightMethod)opt->lights,
+                     opt->roulette == 1,
+                     opt->seed,
+                     (SphereSampling)opt->sphereLamps};
     settings.progress = isatty(2) ? ShowProgress : nullptr; // (a line drawn in place: a terminal's)
     PlanRender(scene, &settings);
     return settings;

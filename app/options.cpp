@@ -54,6 +54,8 @@ const char *kUsage =
     "  --roulette on|off        `shading path`: Russian roulette ends dim paths (default, "
     "unbiased)\n"
     "                           or only --depth does (biased)\n"
+    "  --sphere-lamps cone|area `shading path`: points on a glowing sphere drawn in the cone it\n"
+    "                           is seen in (default), or uniformly over its area\n"
     "  --seed N                 `shading path`: another seed draws other random numbers (0)\n"
     "  --view normal|depth|id|cost|shadow\n"
     "                           draw a debug view instead of the lit image (default output:\n"
@@ -191,6 +193,7 @@ static const ChoiceOption kChoices[] = {
     {"--scatter", {"cosine", "uniform"}, &Options::scatter},
     {"--lights", {"mis", "nee", "none"}, &Options::lights},
     {"--roulette", {"on", "off"}, &Options::roulette},
+    {"--sphere-lamps", {"cone", "area"}, &Options::sphereLamps},
     {"--sphere", {"stable", "textbook"}, &Options::sphere},
     {"--triangle", {"watertight", "cramer", "plane"}, &Options::triangle},
     {"--camera-ray", {"eye", "slides"}, &Options::cameraRay},
@@ -244,13 +247,16 @@ static bool ParseOption(const std::string &a, char **v, Options *opt, std::strin
 static const struct {
     const char *name;
     int values;
-} kOptions[] = {{"-o", 1},        {"--size", 1},      {"--spp", 1},        {"--depth", 1},
-                {"--threads", 1}, {"--aa", 1},        {"--triangle", 1},   {"--sphere", 1},
-                {"--methods", 1}, {"--self-hit", 1},  {"--camera-ray", 1}, {"--fresnel", 1},
-                {"--view", 1},    {"--ray", 6},       {"--rays", 1},       {"--pixel", 2},
-                {"--compare", 2}, {"--tolerance", 1}, {"--stats", 0},      {"--help", 0},
-                {"-h", 0},        {"--version", 0},   {"--layout", 1},     {"--scatter", 1},
-                {"--lights", 1},  {"--roulette", 1},  {"--seed", 1},       {"--estimator", 1}};
+} kOptions[] = {{"-o", 1},          {"--size", 1},        {"--spp", 1},
+                {"--depth", 1},     {"--threads", 1},     {"--aa", 1},
+                {"--triangle", 1},  {"--sphere", 1},      {"--methods", 1},
+                {"--self-hit", 1},  {"--camera-ray", 1},  {"--fresnel", 1},
+                {"--view", 1},      {"--ray", 6},         {"--rays", 1},
+                {"--pixel", 2},     {"--compare", 2},     {"--tolerance", 1},
+                {"--stats", 0},     {"--help", 0},        {"-h", 0},
+                {"--version", 0},   {"--layout", 1},      {"--scatter", 1},
+                {"--lights", 1},    {"--roulette", 1},    {"--seed", 1},
+                {"--estimator", 1}, {"--sphere-lamps", 1}};
 
 // Options that would change nothing in the mode chosen are errors, not silently ignored: a probe
 // asks about one given ray (no image, no samples, no threads, no camera, nothing it leads to);
@@ -267,13 +273,13 @@ static bool CheckUnused(const Options *opt, const std::string &seen, std::string
         {opt->probeRay || !opt->raysFile.empty(),
          opt->probeRay ? "--ray" : "--rays",
          {"--size", "--spp", "--aa", "--threads", "--depth", "--view", "--stats", "--seed",
-          "--scatter", "--lights", "--roulette", "--estimator", "--self-hit", "--camera-ray",
-          "--fresnel"}},
+          "--scatter", "--lights", "--roulette", "--estimator", "--sphere-lamps", "--self-hit",
+          "--camera-ray", "--fresnel"}},
         {opt->pixel, "--pixel", {"--spp", "--aa", "--threads", "--stats"}},
         {opt->view, // one ray through each pixel's centre, on one thread
          "--view",
          {"--spp", "--aa", "--threads", "--seed", "--scatter", "--lights", "--roulette",
-          "--estimator"}},
+          "--estimator", "--sphere-lamps"}},
         // what the eye ray found: no ray leaves a surface, no glass is shaded, no chain follows
         {opt->view && opt->viewKind != VIEW_COST && opt->viewKind != VIEW_SHADOW,
          "--view normal, depth or id",
@@ -283,7 +289,7 @@ static bool CheckUnused(const Options *opt, const std::string &seen, std::string
          "--compare",
          {"--size", "--spp", "--aa", "--threads", "--depth", "--methods", "--sphere", "--triangle",
           "--self-hit", "--camera-ray", "--fresnel", "--layout", "--stats", "--seed", "--scatter",
-          "--lights", "--roulette", "--estimator"}},
+          "--lights", "--roulette", "--estimator", "--sphere-lamps"}},
         {opt->spp == 1, "one sample a pixel", {"--aa"}},
     };
     for (const Rule &r : rules) {

@@ -296,6 +296,7 @@ int RobustnessTables();                 // robustness.cpp
 int MethodsTable(const char *folder);   // methods.cpp
 int LayoutTable(const char *folder);    // layout.cpp
 int PathTable(const char *folder);      // path.cpp
+int NoiseMain(char **argv);             // peers.cpp
 
 int main(int argc, char **argv) {
     std::string mode = argc > 1 ? argv[1] : "";
@@ -317,10 +318,13 @@ int main(int argc, char **argv) {
         return LayoutTable(argv[2]);
     if (mode == "path" && argc == 3)
         return PathTable(argv[2]);
+    if (mode == "noise" && argc == 7)
+        return NoiseMain(argv + 2);
     if (mode != "rows" || argc != 3) {
-        fprintf(stderr, "usage: bench rows DIR | bench report DIR | bench pngfloor RGB PNG | "
-                        "bench time PROGRAM ARGS... | bench robustness | bench methods [DIR] | "
-                        "bench layout DIR | bench path DIR\n");
+        fprintf(stderr,
+                "usage: bench rows DIR | bench report DIR | bench pngfloor RGB PNG | "
+                "bench time PROGRAM ARGS... | bench robustness | bench methods [DIR] | "
+                "bench layout DIR | bench path DIR | bench noise IMAGE N REF R srgb|gamma\n");
         return 2;
     }
     for (const BenchScene &b : kScenes)

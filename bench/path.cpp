@@ -39,27 +39,36 @@ struct PathMethod {
 };
 
 static const PathMethod kMethods[] = {
-    {"cosine + MIS", {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 0}, SAMPLES_JITTER, 0},
-    {"uniform + MIS", {ESTIMATOR_FULL, SCATTER_UNIFORM, LIGHTS_MIS, false, 0}, SAMPLES_JITTER, 0},
-    {"cosine + NEE only",
-     {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NEE, false, 0},
+    {"cosine + MIS",
+     {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 0, SPHERES_CONE},
      SAMPLES_JITTER,
      0},
-    {"cosine, no NEE", {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 0}, SAMPLES_JITTER, 0},
+    {"uniform + MIS",
+     {ESTIMATOR_FULL, SCATTER_UNIFORM, LIGHTS_MIS, false, 0, SPHERES_CONE},
+     SAMPLES_JITTER,
+     0},
+    {"cosine + NEE only",
+     {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NEE, false, 0, SPHERES_CONE},
+     SAMPLES_JITTER,
+     0},
+    {"cosine, no NEE",
+     {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 0, SPHERES_CONE},
+     SAMPLES_JITTER,
+     0},
     {"fixed cap of 3 rays",
-     {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, true, 0},
+     {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, true, 0, SPHERES_CONE},
      SAMPLES_JITTER,
      3},
     {"fixed cap of 10 rays",
-     {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, true, 0},
+     {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, true, 0, SPHERES_CONE},
      SAMPLES_JITTER,
      10},
     {"adaptive (at most N)",
-     {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 0},
+     {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 0, SPHERES_CONE},
      SAMPLES_ADAPTIVE,
      0},
     {"the journal's estimator",
-     {ESTIMATOR_JOURNAL, SCATTER_COSINE, LIGHTS_MIS, true, 0},
+     {ESTIMATOR_JOURNAL, SCATTER_COSINE, LIGHTS_MIS, true, 0, SPHERES_CONE},
      SAMPLES_JITTER,
      0},
 };
@@ -91,8 +100,8 @@ static void Reference(const Scene *scene, const char *folder, const char *name, 
     std::string path = std::string(folder) + "/ref_path_" + name + ".png", error;
     if (sizeof(real) != sizeof(double) && ReadImage(path.c_str(), image, &error))
         return;
-    Render(scene, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 99}, SAMPLES_JITTER,
-           kReferenceSpp, 0, image);
+    Render(scene, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 99, SPHERES_CONE},
+           SAMPLES_JITTER, kReferenceSpp, 0, image);
     if (sizeof(real) == sizeof(double) && !WriteImage(path.c_str(), image, &error))
         fprintf(stderr, "bench: %s\n", error.c_str());
 }

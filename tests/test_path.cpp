@@ -49,8 +49,9 @@ static void TestWhiteFurnace() {
     scene.materials.push_back(Matte("grey", rho));
     scene.spheres.push_back({{0, 0, -4}, real(1.5), 0});
     for (int roulette = 0; roulette < 2; roulette++) {
-        RenderSettings s =
-            PathSettings(&scene, 1, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, roulette == 1, 0});
+        RenderSettings s = PathSettings(
+            &scene, 1,
+            {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, roulette == 1, 0, SPHERES_CONE});
         RayStats stats = {};
         bool exact = true;
         for (int j = 2; j <= 6; j++)
@@ -61,7 +62,9 @@ static void TestWhiteFurnace() {
         CHECK(exact, "white furnace: every path on the sphere brings back exactly rho");
         CHECK(stats.diffuse == stats.primary,
               "and every path scatters once and escapes: one diffuse ray a primary ray");
-        s = PathSettings(&scene, 8, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, roulette == 1, 0});
+        s = PathSettings(
+            &scene, 8,
+            {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, roulette == 1, 0, SPHERES_CONE});
         s.sampling = SAMPLES_JITTER;
         color c = Pixel(&scene, &s, 4, 4, &stats);
         CHECK_NEAR(c.z, rho.z, 8 * kRelTol, "8 jittered samples average to rho (but rounding)");
@@ -118,8 +121,8 @@ static void TestInsideGlowingSphere() {
     Scene scene = InsideGlowingSphere(real(0.5), 1);
     for (int k : {1, 3, 8}) {
         scene.depth = k;
-        RenderSettings s =
-            PathSettings(&scene, 2, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, true, 0});
+        RenderSettings s = PathSettings(
+            &scene, 2, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, true, 0, SPHERES_CONE});
         RayStats stats = {};
         color c = Pixel(&scene, &s, 3, 4, &stats);
         double expected = (1 - std::pow(0.5, k)) / 0.5;
@@ -129,8 +132,8 @@ static void TestInsideGlowingSphere() {
         // rho/pi Le cos cos' / r^2 over the density 1 / (4 pi R^2), and on a sphere cos = cos' =
         // r / 2R, so exactly rho Le, weighted rho^(k-1): one term more
         for (LightMethod lights : {LIGHTS_NEE, LIGHTS_MIS}) {
-            RenderSettings n =
-                PathSettings(&scene, 2, {ESTIMATOR_FULL, SCATTER_COSINE, lights, true, 0});
+            RenderSettings n = PathSettings(
+                &scene, 2, {ESTIMATOR_FULL, SCATTER_COSINE, lights, true, 0, SPHERES_CONE});
             color d = Pixel(&scene, &n, 3, 4, &stats);
             CHECK_NEAR(d.x, (1 - std::pow(0.5, k + 1)) / 0.5, 8 * kRelTol,
                        "cap of " + std::to_string(k) +
@@ -140,8 +143,8 @@ static void TestInsideGlowingSphere() {
     // Unbiased methods, no cap to speak of: the mean of 64 pixels within 4 standard errors
     for (LightMethod lights : {LIGHTS_MIS, LIGHTS_NEE, LIGHTS_NONE}) {
         scene.depth = 1000;
-        RenderSettings s =
-            PathSettings(&scene, 16, {ESTIMATOR_FULL, SCATTER_COSINE, lights, false, 0});
+        RenderSettings s = PathSettings(
+            &scene, 16, {ESTIMATOR_FULL, SCATTER_COSINE, lights, false, 0, SPHERES_CONE});
         double sum = 0, sum2 = 0;
         RayStats stats = {};
         for (int j = 0; j < 8; j++)
@@ -175,8 +178,8 @@ static void TestEmittersAtEveryScale() {
         std::string at = text;
         Scene sphere = InsideGlowingSphere(real(0.5), 1);
         sphere.spheres[0].radius = 10 * scale, sphere.depth = 1;
-        RenderSettings s =
-            PathSettings(&sphere, 2, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NEE, true, 0});
+        RenderSettings s = PathSettings(
+            &sphere, 2, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NEE, true, 0, SPHERES_CONE});
         RayStats stats = {};
         CHECK_NEAR(Pixel(&sphere, &s, 3, 4, &stats).x, 1.5, 8 * kRelTol,
                    "inside a glowing sphere, one ray and its lamp sample: Le (1 + rho)" + at);
@@ -189,8 +192,8 @@ static void TestEmittersAtEveryScale() {
         for (auto &t : f)
             octahedron.triangles.push_back({p[t[0]], p[t[1]], p[t[2]], 0});
         for (LightMethod lights : {LIGHTS_NEE, LIGHTS_MIS}) {
-            RenderSettings o =
-                PathSettings(&octahedron, 16, {ESTIMATOR_FULL, SCATTER_COSINE, lights, true, 0});
+            RenderSettings o = PathSettings(
+                &octahedron, 16, {ESTIMATOR_FULL, SCATTER_COSINE, lights, true, 0, SPHERES_CONE});
             double sum = 0, sum2 = 0;
             for (int j = 0; j < 8; j++)
                 for (int i = 0; i < 8; i++) {
@@ -292,11 +295,12 @@ static void CheckAgree(const std::vector<double> &base, const std::vector<double
 static void TestMethodsAgree() {
     Scene scene = SmallBox(10);
     std::vector<double> base =
-        Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 1});
-    const PathMethods others[] = {{ESTIMATOR_FULL, SCATTER_UNIFORM, LIGHTS_MIS, false, 2},
-                                  {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NEE, false, 3},
-                                  {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 4},
-                                  {ESTIMATOR_FULL, SCATTER_UNIFORM, LIGHTS_NONE, true, 5}};
+        Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 1, SPHERES_CONE});
+    const PathMethods others[] = {
+        {ESTIMATOR_FULL, SCATTER_UNIFORM, LIGHTS_MIS, false, 2, SPHERES_CONE},
+        {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NEE, false, 3, SPHERES_CONE},
+        {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 4, SPHERES_CONE},
+        {ESTIMATOR_FULL, SCATTER_UNIFORM, LIGHTS_NONE, true, 5, SPHERES_CONE}};
     const char *names[] = {"uniform sampling", "NEE without MIS", "no NEE",
                            "uniform, no NEE, no roulette", "adaptive sampling (no NEE)"};
     for (int k = 0; k < 5; k++) {
@@ -304,10 +308,12 @@ static void TestMethodsAgree() {
             scene.lights.clear(); // count chosen from the averaged samples would darken it
         std::vector<double> other =
             k < 4 ? Light(&scene, 256, others[k])
-                  : Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 6},
+                  : Light(&scene, 256,
+                          {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 6, SPHERES_CONE},
                           SAMPLES_ADAPTIVE);
         if (k == 4)
-            base = Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 1});
+            base = Light(&scene, 256,
+                         {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 1, SPHERES_CONE});
         CheckAgree(base, other, names[k]);
     }
 }
@@ -319,11 +325,84 @@ static void TestSphereLampAgrees() {
     scene.lights.clear();
     scene.spheres[0].material = 3; // the lamp's material: the sphere glows
     std::vector<double> hits =
-        Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 1});
-    CheckAgree(hits, Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NEE, false, 2}),
-               "a glowing sphere found by next-event estimation alone");
-    CheckAgree(hits, Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_UNIFORM, LIGHTS_MIS, false, 3}),
-               "a glowing sphere under MIS, uniform sampling");
+        Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NONE, false, 1, SPHERES_CONE});
+    CheckAgree(
+        hits,
+        Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_NEE, false, 2, SPHERES_CONE}),
+        "a glowing sphere found by next-event estimation alone");
+    CheckAgree(
+        hits,
+        Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_UNIFORM, LIGHTS_MIS, false, 3, SPHERES_CONE}),
+        "a glowing sphere under MIS, uniform sampling");
+    CheckAgree(
+        hits,
+        Light(&scene, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 4, SPHERES_AREA}),
+        "a glowing sphere under MIS, its points drawn over its area");
+}
+
+// Light from a glowing sphere seen from outside, by hand: a surface point at distance D from the
+// centre of a sphere of radius R and radiance Le, the centre at angle beta from its normal and
+// the whole sphere above its horizon, receives irradiance pi Le (R / D)^2 cos beta (the sphere
+// looks like a disk of that solid angle), and a matte surface sends rho / pi of it back. Here the
+// eye ray meets the floor z = -s at (0, 0, -s), the lamp's centre is at (s, 0, s), R = s / 2: D =
+// s sqrt(5), cos beta = 2 / sqrt(5). With one ray (depth 1) only next-event estimation lights the
+// point; with two, a scattered ray can find the lamp too, weighted by MIS. The mean of 256
+// samples (one a seed) is the hand answer within 4 standard errors at every scale, under either
+// way of drawing the lamp's points, and drawn in the cone the lamp is seen in, a sample varies
+// less than when drawn over its whole area, half of which faces away.
+static double LampSample(real scale, int depth, PathMethods methods, int seed) {
+    Scene scene = PathScene(1);
+    scene.depth = depth;
+    Material lamp = Matte("lamp", {0, 0, 0});
+    lamp.emit = {4, 4, 4};
+    scene.materials = {Matte("floor", {real(0.5), real(0.5), real(0.5)}), lamp};
+    scene.triangles.push_back({{-8 * scale, -8 * scale, -scale},
+                               {8 * scale, -8 * scale, -scale},
+                               {0, 8 * scale, -scale},
+                               0});
+    scene.spheres.push_back({{scale, 0, scale}, scale / 2, 1});
+    methods.seed = seed;
+    RenderSettings s = PathSettings(&scene, 1, methods);
+    s.sampling = SAMPLES_GRID;
+    RayStats stats = {};
+    return Pixel(&scene, &s, 0, 0, &stats).x;
+}
+
+static void TestSphereLampFromOutside() {
+    double exact = 0.5 * 4 * (0.25 / 5) * (2 / std::sqrt(5.0)); // rho Le (R/D)^2 cos beta
+#ifdef RT_FLOAT
+    const real scales[] = {real(1e-30), 1, real(1e30)};
+#else
+    const real scales[] = {real(1e-300), 1, real(1e300)};
+#endif
+    for (real scale : scales)
+        for (int depth : {1, 2}) {
+            double spread[2];
+            for (SphereSampling how : {SPHERES_CONE, SPHERES_AREA}) {
+                double sum = 0, sum2 = 0;
+                for (int seed = 0; seed < 256; seed++) {
+                    double v = LampSample(scale, depth,
+                                          {ESTIMATOR_FULL, SCATTER_COSINE,
+                                           depth == 1 ? LIGHTS_NEE : LIGHTS_MIS, false, 0, how},
+                                          seed);
+                    sum += v, sum2 += v * v;
+                }
+                double mean = sum / 256, sd = std::sqrt(std::max(0.0, sum2 / 256 - mean * mean));
+                spread[how] = sd;
+                char text[160];
+                snprintf(text, sizeof text,
+                         "a lamp sphere seen from outside, %s, %s, scale %g: rho Le (R/D)^2 cos "
+                         "beta = %.5f, mean %.5f +- %.5f",
+                         how == SPHERES_CONE ? "its cone" : "its area",
+                         depth == 1 ? "next-event estimation" : "MIS", (double)scale, exact, mean,
+                         sd / 16);
+                CHECK(sd > 0 && std::fabs(mean - exact) <= 4 * sd / 16, text);
+            }
+            CHECK(spread[SPHERES_CONE] < 0.5 * spread[SPHERES_AREA],
+                  "drawn in its cone, a sample varies less than half as much as over its area (" +
+                      std::to_string(spread[SPHERES_CONE]) + " against " +
+                      std::to_string(spread[SPHERES_AREA]) + ")");
+        }
 }
 
 // The same bytes on 1 and 2 threads; exact ray counts where they are predictable.
@@ -343,8 +422,8 @@ static void TestThreadsAndCounts() {
     // emitter, and scatters once; the scattered ray's vertex adds its shadow rays and ends
     scene.depth = 2;
     RayStats c = {};
-    RenderSettings capped =
-        PathSettings(&scene, 1, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, true, 0});
+    RenderSettings capped = PathSettings(
+        &scene, 1, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, true, 0, SPHERES_CONE});
     Render(&scene, &capped, &one, &c);
     uint64_t diffuseHits = 0; // pixels whose centre sees a diffuse wall, not the lamp
     for (int j = 0; j < 16; j++)
@@ -396,7 +475,7 @@ static void TestEmitterWithoutArea() {
 // hit, lights nothing. And where a scene has no point light, it estimates the same light as
 // rt's estimator, within 4 standard errors.
 static void TestJournalEstimator() {
-    PathMethods journal = {ESTIMATOR_JOURNAL, SCATTER_COSINE, LIGHTS_MIS, false, 0};
+    PathMethods journal = {ESTIMATOR_JOURNAL, SCATTER_COSINE, LIGHTS_MIS, false, 0, SPHERES_CONE};
     Scene furnace = PathScene(9);
     furnace.background = {1, 1, 1};
     furnace.materials.push_back(Matte("grey", {real(0.3), real(0.5), real(0.8)}));
@@ -424,9 +503,10 @@ static void TestJournalEstimator() {
           "the journal's estimator: a wall under a point light only is black (no ray hits it)");
     Scene box = SmallBox(10);
     box.lights.clear();
-    CheckAgree(Light(&box, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 1}),
-               Light(&box, 256, {ESTIMATOR_JOURNAL, SCATTER_COSINE, LIGHTS_MIS, false, 2}),
-               "the journal's estimator against rt's, a box lit by a lamp");
+    CheckAgree(
+        Light(&box, 256, {ESTIMATOR_FULL, SCATTER_COSINE, LIGHTS_MIS, false, 1, SPHERES_CONE}),
+        Light(&box, 256, {ESTIMATOR_JOURNAL, SCATTER_COSINE, LIGHTS_MIS, false, 2, SPHERES_CONE}),
+        "the journal's estimator against rt's, a box lit by a lamp");
 }
 
 // The program: the path options, --stats and --pixel.
@@ -475,6 +555,7 @@ void TestPath() {
     TestConvergence();
     TestMethodsAgree();
     TestSphereLampAgrees();
+    TestSphereLampFromOutside();
     TestThreadsAndCounts();
     TestEmitterWithoutArea();
     TestJournalEstimator();
