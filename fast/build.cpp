@@ -296,6 +296,12 @@ static RT_INLINE int SplitItems(BuildItem *items, int begin, int end, const Node
     int n = end - begin;
     Bins bins;
     Split best = {kInfinity, kInfinity, 0, 0};
+    // Items whose centres all coincide (copies of one shape) cannot be told apart by any split:
+    // each side would have the node's own box, and a ray would walk both. They stay one leaf, which
+    // costs what the list does.
+    const Bounds *c = &node->centres;
+    if (c->lo[0] == c->hi[0] && c->lo[1] == c->hi[1] && c->lo[2] == c->hi[2])
+        return -1;
     if (heuristic && PlaceBins(node, &bins)) {
         FillBins(items + begin, n, &bins);
         real area = HalfArea(&node->box);

@@ -2,8 +2,9 @@
 //
 // A scene is written, read and explained as the handouts' structs. Once per render, CommitScene
 // (after Embree's rtcCommitScene) copies the triangles, and the spheres, into blocks of kLanes,
-// coordinate by coordinate, for the kernel (kernel.cpp) to test a block at a time; and when the
-// scene has enough triangles that it pays (kBvhMinTriangles), it builds a bounding
+// coordinate by coordinate, for the kernel (kernel.cpp) to test a block at a time (the spheres in
+// commit_spheres.cpp); and when the scene has enough triangles that it pays (kBvhMinTriangles),
+// it builds a bounding
 // volume hierarchy over them: a binary tree, top down, each node split where build.cpp says (the
 // surface area heuristic over binned centroids: Wald, "On fast construction of SAH-based bounding
 // volume hierarchies", 2007; pbrt-v4 §7.3), then collapsed to four children a node. Large
@@ -370,29 +371,9 @@ static void BuildTree(const std::vector<Triangle> &triangles, int most, SceneLay
     NumberAndCollapse(&b, triangles, threads, layout);
 }
 
-// The spheres, kLanes to a block in scene order, for the kernel's first sphere step. An empty
-// lane repeats the block's first sphere (finite numbers, so it computes nothing unusual) and is
-// left out of `filled`.
-static void SphereBlocks(const std::vector<Sphere> &spheres, SceneLayout *layout) {
-    int n = (int)spheres.size();
-    layout->sphereBlocks.resize(Blocks(n));
-    for (int first = 0; first < n; first += kLanes) {
-        SphereBlock *block = &layout->sphereBlocks[first / kLanes];
-        block->filled = 0;
-        for (int lane = 0; lane < kLanes; lane++) {
-            const Sphere *s = &spheres[first + lane < n ? first + lane : first];
-            for (int axis = 0; axis < 3; axis++)
-                block->center[axis][lane] = Component(s->center, axis);
-            block->r2[lane] = s->radius * s->radius; // (as LineMissesSphere rounds it)
-            block->filled |= (unsigned)(first + lane < n) << lane;
-        }
-    }
-    layout->sphereCount = spheres.size();
-}
-
 void CommitScene(Scene *scene, LayoutChoice choice, int threads, SceneLayout *layout) {
     layout->blocks.clear(), layout->nodes.clear(), layout->setUps.clear();
-    layout->sphereBlocks.clear();
+    layout->sphereBlocks.clear(), layout->sphereNodes.clear();
     if (choice == LAYOUT_PLAIN) {
         scene->accelerator = nullptr;
         return;
@@ -409,7 +390,7 @@ void CommitScene(Scene *scene, LayoutChoice choice, int threads, SceneLayout *la
         AppendBlocks(triangles, index.data(), n, layout);
         SetUpAll(triangles, layout);
     }
-    SphereBlocks(scene->spheres, layout);
+    CommitSpheres(scene->spheres, choice, layout);
     layout->triangleCount = triangles.size();
     layout->vectors = KernelHasVectors();
     layout->scene = scene;

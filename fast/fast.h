@@ -32,6 +32,7 @@ struct TriangleBlock {
 struct SphereBlock {
     alignas(32) real center[3][kLanes]; // x, y, z, lane by lane
     real r2[kLanes];                    // radius * radius
+    int index[kLanes];                  // each lane's place in scene->spheres; -1: empty
     unsigned filled;                    // bit `lane` set: the lane holds a sphere
 };
 
@@ -61,7 +62,9 @@ struct SceneLayout {
     std::vector<TriangleBlock> blocks; // in scene order, or in BVH leaf order
     std::vector<BvhNode> nodes;        // empty: no BVH, the blocks are one list
     std::vector<TriangleSetUp> setUps; // each triangle's box and plane, by its place in the scene
-    std::vector<SphereBlock> sphereBlocks; // the spheres in scene order, kLanes a block
+    std::vector<SphereBlock> sphereBlocks; // the spheres in scene order, kLanes a block, or in
+                                           // the sphere BVH's leaf order
+    std::vector<BvhNode> sphereNodes;      // empty: no sphere BVH, the blocks are one list
     size_t triangleCount = 0;              // the number of triangles it was built from
     size_t sphereCount = 0;                // the number of spheres it was built from
     bool vectors = false; // the kernel tests blocks in AVX2 vectors (else lane by lane)
@@ -123,6 +126,12 @@ bool KernelHasVectors();
 // (`make RT_SCALAR=1`, or a compiler without vector extensions).
 const char *KernelName();
 
+// ---- commit_spheres.cpp: the committed spheres (for CommitScene) ----------------------------
+
+// layout->sphereBlocks in scene order, or for a scene with many spheres (or LAYOUT_BVH) a BVH over
+// those that can be hit, layout->sphereNodes, and the blocks in its leaves' order.
+void CommitSpheres(const std::vector<Sphere> &spheres, LayoutChoice choice, SceneLayout *layout);
+
 // ---- build.cpp: where the BVH build splits a node (for CommitScene) -------------------------
 
 // A box as the build keeps it: lo and hi of x, y, z, each read as a vector of four numbers whose
@@ -159,9 +168,10 @@ void MakeBuildItems(const Triangle *triangles, int first, int last, bool vectors
                     NodeBounds *bounds);
 
 // Where to split the node of items[begin, end), whose bounds are `node`: by the surface area
-// heuristic, or at the median where `heuristic` is false or the centres do not spread. Reorders
-// the items so that the first side's come first, and returns where the second's begin, with the
-// bounds of both sides; -1 where a leaf costs less (and the items are left as they were).
+// heuristic, or at the median where `heuristic` is false or the centres spread too little or too
+// far to bin. Reorders the items so that the first side's come first, and returns where the
+// second's begin, with the bounds of both sides; -1 where a leaf costs less, or where every centre
+// is the same point (and the items are left as they were).
 int SplitNode(BuildItem *items, int begin, int end, const NodeBounds *node, bool heuristic,
               bool vectors, NodeBounds side[2]);
 

@@ -138,10 +138,32 @@ RT_AVX2 static RT_NOINLINE bool ChunksAvx2(const Scene *scene, const SceneLayout
 }
 #endif
 
+// The spheres' tree (kernel_walk.h), in both copies.
+static RT_NOINLINE bool SphereTreeBaseline(const Scene *scene, const SceneLayout *layout, int skip,
+                                           const Ray *ray, real tMin, real *tMax, bool anyHit,
+                                           RayHit *hit) {
+    return WalkSpheres<false>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+}
+
+#if RT_DISPATCH
+RT_AVX2 static RT_NOINLINE bool SphereTreeAvx2(const Scene *scene, const SceneLayout *layout,
+                                               int skip, const Ray *ray, real tMin, real *tMax,
+                                               bool anyHit, RayHit *hit) {
+    return WalkSpheres<true>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+}
+#endif
+
 bool HitCommittedSpheres(const Scene *scene, const SceneLayout *layout, int skip, const Ray *ray,
                          real tMin, real *tMax, bool anyHit, RayHit *hit) {
     if (layout->sphereCount == 0) // (a mesh scene: no call, no lanes made for nothing)
         return false;
+    if (!layout->sphereNodes.empty()) {
+#if RT_DISPATCH
+        if (layout->vectors)
+            return SphereTreeAvx2(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+#endif
+        return SphereTreeBaseline(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+    }
     bool one = layout->sphereCount <= (size_t)(kChunkBlocks * kLanes);
 #if RT_DISPATCH
     if (layout->vectors)
@@ -170,8 +192,8 @@ bool HitCommittedPacket(const Scene *scene, const SceneLayout *layout, const Ray
                         RayHit *hits, bool *found) {
 #if RT_DISPATCH
     int count = packet->count;
-    if (!layout->vectors || !layout->nodes.empty() || count < 1 || count > kLanes ||
-        packet->kz < 0 || packet->kz > 2)
+    if (!layout->vectors || !layout->nodes.empty() || !layout->sphereNodes.empty() || count < 1 ||
+        count > kLanes || packet->kz < 0 || packet->kz > 2)
         return false;
     PacketSearch p;
     p.packet = packet, p.active = (1u << count) - 1, p.hits = hits;
@@ -247,7 +269,7 @@ bool SearchLayout(const Accelerator *self, const Scene *scene, Methods methods, 
 // one ray's search with more bookkeeping.
 const size_t kPacketShapes = 64;
 static bool PacketPays(const SceneLayout *layout, int count) {
-    return count >= 2 && layout->vectors && layout->nodes.empty() &&
+    return count >= 2 && layout->vectors && layout->nodes.empty() && layout->sphereNodes.empty() &&
            layout->triangleCount + layout->sphereCount <= kPacketShapes;
 }
 
@@ -277,7 +299,9 @@ void SearchEyeRays(const Accelerator *self, const Scene *scene, Methods methods,
     }
 }
 
-std::string DescribeLayout(const Scene *scene, const SceneLayout *layout, double buildSeconds) {
+// What --stats says of the triangles.
+static std::string DescribeTriangles(const Scene *scene, const SceneLayout *layout,
+                                     double buildSeconds) {
     char text[200];
     if (scene->triangles.empty()) // (--layout bvh too: there is nothing to build a tree over)
         return "triangles: none";
@@ -293,4 +317,18 @@ std::string DescribeLayout(const Scene *scene, const SceneLayout *layout, double
              scene->triangles.size(), layout->blocks.size(), kLanes, tree, buildSeconds * 1e3,
              layout->vectors ? "blocks tested in AVX2 vectors" : "blocks tested lane by lane");
     return text;
+}
+
+// What --stats says of the spheres, where they have a tree.
+static std::string DescribeSpheres(const Scene *scene, const SceneLayout *layout) {
+    if (scene->accelerator != &layout->accelerator || layout->sphereNodes.empty())
+        return "";
+    char text[120];
+    snprintf(text, sizeof text, "; spheres: %zu in a BVH of %zu nodes of %d", scene->spheres.size(),
+             layout->sphereNodes.size(), kChildren);
+    return text;
+}
+
+std::string DescribeLayout(const Scene *scene, const SceneLayout *layout, double buildSeconds) {
+    return DescribeTriangles(scene, layout, buildSeconds) + DescribeSpheres(scene, layout);
 }

@@ -3,6 +3,7 @@
 // TestBlocks (kernel_blocks.h). Included by kernel.cpp alone, like kernel_blocks.h.
 #pragma once
 #include "kernel_blocks.h"
+#include "kernel_spheres.h"
 
 // The four children of a node tested at once: SlabInterval for each, lane by lane, with the
 // same operations in the same order (so a child's window is exactly what SlabInterval gives).
@@ -176,38 +177,103 @@ static RT_INLINE bool VisitNode(const BvhNode *n, const NodeRay *r, const Quad *
     return true;
 }
 
-// The BVH walk: a child whose window (SlabInterval) misses (tMin, tMax) is skipped, the others
-// are visited nearest first, so the nearest hit shrinks tMax early, and a child whose window
-// begins beyond it by the time its turn comes is skipped too. (A window that begins exactly at
-// tMax is visited: it may hold a tie that an earlier triangle wins.) A node's nearest open
-// child is visited next without going through the stack: tMax has not moved since its window
-// was checked.
-template <int kz, bool kVectors>
-static RT_INLINE bool WalkTree(const SceneLayout *layout, Search *s, RayHit *hit) {
+// The BVH walk, over the triangles' tree or the spheres': a child whose window (SlabInterval)
+// misses (tMin, *tMax) is skipped, the others are visited nearest first, so the nearest hit
+// shrinks *tMax early, and a child whose window begins beyond it by the time its turn comes is
+// skipped too. (A window that begins exactly at *tMax is visited: it may hold a tie that an
+// earlier shape wins.) A node's nearest open child is visited next without going through the
+// stack: *tMax has not moved since its window was checked. leaf(first, count) tests a leaf's
+// blocks, lowers *tMax to any hit's t, and says whether it found one.
+template <bool kVectors, typename Leaf>
+static RT_INLINE bool WalkNodes(const BvhNode *nodes, const Ray *ray, real tMin, real *tMax,
+                                bool anyHit, const Leaf &leaf) {
     Pending stack[3 * kMaxDepth + kChildren];
     int top = 0;
     NodeRay r;
-    MakeNodeRay(s->ray, s->tMin, &layout->nodes[0], &r);
-    const BvhNode *nodes = layout->nodes.data();
-    Quad tMax; // s->tMax in every lane, kept up to date as hits shrink it
-    SplatQuad(&tMax, s->tMax);
+    MakeNodeRay(ray, tMin, &nodes[0], &r);
+    Quad tMaxes; // *tMax in every lane, kept up to date as hits shrink it
+    SplatQuad(&tMaxes, *tMax);
     bool found = false;
-    Pending next = {0, 0, -kInfinity}; // the root, whose children are all the triangles
+    Pending next = {0, 0, -kInfinity}; // the root, whose children are all the shapes
     for (;;) {
         if (next.blocks == 0) {
-            if (VisitNode<kVectors>(&nodes[next.child], &r, &tMax, stack, &top, &next))
+            if (VisitNode<kVectors>(&nodes[next.child], &r, &tMaxes, stack, &top, &next))
                 continue;
-        } else if (TestBlocks<kz, kVectors>(layout->blocks.data(), next.child, next.blocks, s,
-                                            hit)) {
+        } else if (leaf(next.child, next.blocks)) {
             found = true;
-            if (s->anyHit)
+            if (anyHit)
                 return true;
-            SplatQuad(&tMax, s->tMax);
+            SplatQuad(&tMaxes, *tMax);
         }
         do { // the nearest waiting child that may still hold a hit
             if (top == 0)
                 return found;
             next = stack[--top];
-        } while (next.near > s->tMax);
+        } while (next.near > *tMax);
     }
+}
+
+template <int kz, bool kVectors>
+static RT_INLINE bool WalkTree(const SceneLayout *layout, Search *s, RayHit *hit) {
+    const TriangleBlock *blocks = layout->blocks.data();
+    return WalkNodes<kVectors>(layout->nodes.data(), s->ray, s->tMin, &s->tMax, s->anyHit,
+                               [blocks, s, hit](int first, int count) {
+                                   return TestBlocks<kz, kVectors>(blocks, first, count, s, hit);
+                               });
+}
+
+// ---- the spheres' tree -------------------------------------------------------------------
+
+// What a search of the spheres' tree keeps: as Search for the triangles.
+struct SphereSearch {
+    const Sphere *spheres;
+    const Ray *ray;
+    SphereLaneRay lanes; // (with vectors)
+    int skip;
+    real tMin, tMax;
+    int best; // place of the nearest sphere hit so far; -1: none
+    bool anyHit;
+};
+
+// A leaf's spheres: the first step on a block at a time (MayMeet), the stable test for the
+// rest. A sphere at the same t as the nearest so far counts only if it comes earlier in the
+// scene, as in the plain loop (so the tMax it is tested against is one step above).
+template <bool kVectors>
+static RT_INLINE bool TestSphereBlocks(const SphereBlock *blocks, int first, int count,
+                                       SphereSearch *s, RayHit *hit) {
+    bool found = false;
+    for (const SphereBlock *b = blocks + first; b < blocks + first + count; b++) {
+        unsigned live = kVectors ? MayMeet(b, &s->lanes) : MayMeetOneByOne(b, s->ray);
+        for (; live != 0; live &= live - 1) {
+            int index = b->index[LowestBit(live)];
+            if (index == s->skip)
+                continue;
+            real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;
+            if (!IntersectSphere(&s->spheres[index], s->ray, s->tMin, limit, hit))
+                continue;
+            hit->index = s->best = index;
+            s->tMax = hit->t;
+            found = true;
+            if (s->anyHit)
+                return true;
+        }
+    }
+    return found;
+}
+
+template <bool kVectors>
+static RT_INLINE bool WalkSpheres(const Scene *scene, const SceneLayout *layout, int skip,
+                                  const Ray *ray, real tMin, real *tMax, bool anyHit, RayHit *hit) {
+    SphereSearch s = {scene->spheres.data(), ray, {}, skip, tMin, *tMax, -1, anyHit};
+    if (kVectors)
+        SplatSphereRay(ray, &s.lanes);
+    const SphereBlock *blocks = layout->sphereBlocks.data();
+    SphereSearch *search = &s;
+    bool found = WalkNodes<kVectors>(layout->sphereNodes.data(), ray, tMin, &s.tMax, anyHit,
+                                     [blocks, search, hit](int first, int count) {
+                                         return TestSphereBlocks<kVectors>(blocks, first, count,
+                                                                           search, hit);
+                                     });
+    *tMax = s.tMax;
+    return found;
 }

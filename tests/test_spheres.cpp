@@ -1,17 +1,20 @@
 // tests/test_spheres.cpp -- the committed sphere blocks answer exactly what the plain loop answers.
 //
 // The kernel's sphere half (fast/kernel_spheres.h) runs the first step of the stable sphere test on
-// kLanes spheres at once and sends the spheres that pass it to IntersectSphere in scene order.
-// It promises the plain loop's very bits: the same nearest sphere, t, point, normal and error
-// bound, ties to the earlier sphere, the same any-hit answer and the same skip. Each check asks
-// the same question of the scene as written and committed, and of the kernel's two copies
-// directly (AVX2 vectors, where this processor has them, and lane by lane), and compares every
-// field of the answers.
+// kLanes spheres at once and sends the spheres that pass it to IntersectSphere, in scene order
+// from one list of blocks, or leaf by leaf from the spheres' BVH (fast/commit_spheres.cpp, walked
+// by kernel_walk.h). Both promise the plain loop's very bits: the same nearest sphere, t, point,
+// normal and error bound, ties to the earlier sphere, the same any-hit answer and the same skip.
+// Each check asks the same question of the scene as written and committed (as a list, and as a
+// tree), and of the kernel's two copies directly (AVX2 vectors, where this processor has them,
+// and lane by lane), and compares every field of the answers.
 #include "../fast/fast.h"
 #include "robust_scenes.h"
 #include "test.h"
 
+#include <cmath>
 #include <cstdio>
+#include <string>
 
 static const bool kDouble = sizeof(real) == sizeof(double);
 
@@ -29,11 +32,11 @@ struct SpherePair {
     SceneLayout layout;
 };
 
-// The pair made from `scene`: the plain loop's, and committed.
-static void MakePair(const Scene &scene, SpherePair *p) {
+// The pair made from `scene`: the plain loop's, and committed as `choice` says.
+static void MakePair(const Scene &scene, LayoutChoice choice, SpherePair *p) {
     p->plain = scene, p->committed = scene;
     p->plain.accelerator = nullptr;
-    CommitScene(&p->committed, LAYOUT_AUTO, 2, &p->layout);
+    CommitScene(&p->committed, choice, 2, &p->layout);
 }
 
 // One question asked of the plain scene and the committed one (nearest and any hit), and, when
@@ -88,9 +91,10 @@ static Scene SpheresAt(int n, real scale, TestRng *rng) {
 // Rays of every kind at one scene: random, grazing a sphere, from inside one, from a point
 // rounded onto one's surface, leaving one (skip), with directions far outside the window. The
 // number of questions whose answers differ.
-static int SphereDifferences(const Scene &scene, real scale, int rays, TestRng *rng) {
+static int SphereDifferences(const Scene &scene, LayoutChoice choice, real scale, int rays,
+                             TestRng *rng) {
     SpherePair p;
-    MakePair(scene, &p);
+    MakePair(scene, choice, &p);
     int differ = 0, n = (int)scene.spheres.size();
     for (int i = 0; i < rays; i++) {
         const Sphere &s = scene.spheres[i % n];
@@ -128,28 +132,68 @@ static int SphereDifferences(const Scene &scene, real scale, int rays, TestRng *
 }
 
 // Scenes of 1 to 9 spheres (blocks partly filled), and of 70 and 150 (more than one chunk of
-// blocks), at scales from the smallest numbers to the largest.
+// blocks; a tree of a few levels), at scales from the smallest numbers to the largest, committed
+// as a list and as a tree.
 static void TestSameSphereHits() {
     // (1e-156 and 1e-20: many squares of radii fall below the normal numbers, where the first
     // step is not trusted)
     const double scales[] = {1e-300, 1e-156, 1e-20, 1, 1e20, 1e150, 1e300};
     const double floatScales[] = {1e-30, 1e-20, 1e-5, 1, 1e5, 1e15, 1e30};
     TestRng rng = {2024};
-    for (int k = 0; k < 7; k++) {
-        real scale = real(kDouble ? scales[k] : floatScales[k]);
-        int differ = 0;
-        for (int n = 1; n <= 9; n++)
-            differ += SphereDifferences(SpheresAt(n, scale, &rng), scale, 100, &rng);
-        char what[120];
-        snprintf(what, sizeof what, "1 to 9 spheres at scale %g: the same bits committed",
-                 (double)scale);
-        CHECK(differ == 0, what);
-        differ = SphereDifferences(SpheresAt(70, scale, &rng), scale, 200, &rng) +
-                 SphereDifferences(SpheresAt(150, scale, &rng), scale, 300, &rng);
-        snprintf(what, sizeof what, "70 and 150 spheres at scale %g: the same bits committed",
-                 (double)scale);
-        CHECK(differ == 0, what);
+    for (LayoutChoice choice : {LAYOUT_LIST, LAYOUT_BVH}) {
+        const char *as = choice == LAYOUT_LIST ? "a list" : "a tree";
+        for (int k = 0; k < 7; k++) {
+            real scale = real(kDouble ? scales[k] : floatScales[k]);
+            int differ = 0;
+            for (int n = 1; n <= 9; n++)
+                differ += SphereDifferences(SpheresAt(n, scale, &rng), choice, scale, 100, &rng);
+            char what[120];
+            snprintf(what, sizeof what, "1 to 9 spheres at scale %g: the same bits as %s",
+                     (double)scale, as);
+            CHECK(differ == 0, what);
+            differ = SphereDifferences(SpheresAt(70, scale, &rng), choice, scale, 200, &rng) +
+                     SphereDifferences(SpheresAt(150, scale, &rng), choice, scale, 300, &rng);
+            snprintf(what, sizeof what, "70 and 150 spheres at scale %g: the same bits as %s",
+                     (double)scale, as);
+            CHECK(differ == 0, what);
+        }
     }
+}
+
+// What a tree must not trip over: 2,000 copies of one sphere (no split separates them: one leaf,
+// and the first copy wins every tie), spheres no ray can hit (radius 0, infinite or NaN, a centre
+// at infinity), walls of radius 1e5 around small spheres (smallpt's box), and spheres nested in
+// one another. The same bits as the plain loop, and a tree that stays small.
+static void TestTreeHardCases() {
+    TestRng rng = {77};
+    Scene copies = SpheresAt(40, 1, &rng);
+    Sphere one = {{0, 0, -3}, real(0.5), 0};
+    for (int k = 0; k < 2000; k++)
+        copies.spheres.push_back(one);
+    copies.spheres.push_back({{1, 1, 1}, kInfinity, 0});
+    copies.spheres.push_back({{1, 1, 1}, std::nan(""), 0});
+    copies.spheres.push_back({{kInfinity, 0, 0}, 1, 0});
+    SpherePair p;
+    MakePair(copies, LAYOUT_BVH, &p);
+    CHECK(!p.layout.sphereNodes.empty() && p.layout.sphereNodes.size() < 40,
+          "2,000 copies of a sphere among 40 others: a tree of " +
+              std::to_string(p.layout.sphereNodes.size()) + " nodes (fewer than 40)");
+    Ray ray = {{0, 0, 0}, {0, 0, -1}};
+    RayHit hit;
+    CHECK(FindNearestHit(&p.committed, kRobustMethods, &ray, 0, kInfinity, &hit) &&
+              hit.index == 40 && hit.t == real(2.5),
+          "of 2,000 copies of a sphere 2.5 ahead, the first (place 40) is hit");
+    int differ = SphereDifferences(copies, LAYOUT_BVH, 1, 300, &rng);
+    Scene box = SpheresAt(60, 20, &rng);
+    const real walls[6][4] = {{100001, 40, 80, 1e5}, {-99901, 40, 80, 1e5}, {50, 40, 1e5, 1e5},
+                              {50, 40, -99830, 1e5}, {50, 1e5, 80, 1e5},    {50, -99918, 80, 1e5}};
+    for (const real *w : walls)
+        box.spheres.push_back({{w[0], w[1], w[2]}, w[3], 0});
+    for (int k = 1; k <= 20; k++)
+        box.spheres.push_back({{3, 2, 1}, real(k) / 4, 0});
+    differ += SphereDifferences(box, LAYOUT_BVH, 50, 600, &rng);
+    CHECK(differ == 0, "copies, spheres no ray can hit, walls of radius 1e5 and nested spheres in "
+                       "a tree: the same bits as the plain loop");
 }
 
 // Ties: copies of one sphere at places 1, 4 and 6, behind it a larger one; the first copy wins,
@@ -159,7 +203,7 @@ static void TestSphereTies() {
     Sphere s = {{0, 0, -5}, 1, 0}, big = {{0, 0, -9}, 3, 0};
     scene.spheres = {big, s, big, big, s, big, s};
     SpherePair p;
-    MakePair(scene, &p);
+    MakePair(scene, LAYOUT_AUTO, &p);
     Ray ray = {{0, 0, 0}, {0, 0, -1}};
     SelfHit start = kNoSelfHit;
     RayHit hit;
@@ -198,5 +242,6 @@ static void TestEditedSpheresAreNotStale() {
 void TestSpheres() {
     TestSameSphereHits();
     TestSphereTies();
+    TestTreeHardCases();
     TestEditedSpheresAreNotStale();
 }
