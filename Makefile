@@ -146,6 +146,11 @@ build/student: bench/student.cpp
 	@mkdir -p $(@D)
 	$(CXX) -O2 -std=c++17 -o $@ $< $(PNG_CFLAGS) $(PNG_LIBS)
 
+# Embree 3 beside rt's triangle search (bench/peer_embree.cpp), built by bench.sh only where
+# Embree is installed (Debian's libembree-dev).
+build/peer_embree: build/double/bench/peer_embree.o $(DOUBLE_CORE)
+	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS) -lembree3
+
 bench: ray ray_float build/double/rtbench build/float/rtbench build/student build/make_mesh
 	@sh bench/bench.sh
 

@@ -318,13 +318,13 @@ int main(int argc, char **argv) {
         return LayoutTable(argv[2]);
     if (mode == "path" && argc == 3)
         return PathTable(argv[2]);
-    if (mode == "noise" && argc == 7)
+    if (mode == "noise" && argc == 8)
         return NoiseMain(argv + 2);
     if (mode != "rows" || argc != 3) {
         fprintf(stderr,
                 "usage: bench rows DIR | bench report DIR | bench pngfloor RGB PNG | "
                 "bench time PROGRAM ARGS... | bench robustness | bench methods [DIR] | "
-                "bench layout DIR | bench path DIR | bench noise IMAGE N REF R srgb|gamma\n");
+                "bench layout DIR | bench path DIR | bench noise IMAGE CURVE N REF CURVE R\n");
         return 2;
     }
     for (const BenchScene &b : kScenes)

@@ -16,34 +16,7 @@ trap 'rm -rf "$out"' EXIT
 report="$dir/speed.md"
 echo "make bench on $cores cores, $(date -u +%Y-%m-%d): writing $dir/" >&2
 
-# spread FILE: "median (min-max)" of the numbers in FILE, one a line
-spread() { sort -g "$1" | awk '{ v[NR] = $1 } END { m = (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2; printf "%.1f (%.1f-%.1f)", m, v[1], v[NR] }'; }
-median() { sort -g "$1" | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
-
-# ratio A B: the median of the ratios A_k / B_k of runs taken in turn (each pair saw the same load
-# on the machine), with their quartiles; "within noise" where the quartiles hold 1.
-ratio() {
-    paste "$1" "$2" | awk '{ print $1 / $2 }' | sort -g | awk '{ v[NR] = $1 } END {
-        m = (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2
-        q1 = v[int((NR + 3) / 4)]; q3 = v[int((3 * NR + 3) / 4)]
-        printf "%.2f (quartiles %.2f-%.2f)", m, q1, q3
-        if (q1 <= 1 && 1 <= q3) printf ", within noise" }'
-}
-
-# timed NAME COMMAND...: one whole-process wall time in ms (rtbench: fork to exit), appended to
-# $out/NAME; the command's --stats render time, if it prints one, to $out/NAME.render
-timed() {
-    name=$1
-    shift
-    build/double/rtbench time "$@" 2>"$out/stats" >>"$out/$name"
-    sed -n 's/^time: render \([0-9.]*\) s.*/\1/p' "$out/stats" | awk '{ print $1 * 1000 }' >>"$out/$name.render"
-    sed -n 's/^rays: .*total=\([0-9]*\)$/\1/p' "$out/stats" >"$out/$name.rays"
-}
-
-make_row() { # NAME LABEL: a table row of the whole-process and render times
-    mrays=$(awk -v r="$(cat "$out/$1.rays")" -v t="$(median "$out/$1.render")" 'BEGIN { printf "%.2f", r / (t / 1000) / 1e6 }')
-    printf '| %s | %s | %s | %s |\n' "$2" "$(spread "$out/$1")" "$(spread "$out/$1.render")" "$mrays"
-}
+. bench/stats.sh
 
 {
 echo "# make bench, $(date -u +%Y-%m-%d), $cores cores"
@@ -180,6 +153,10 @@ echo "scene,knob,setting,spp,seconds,rays,rmse,psnr,off1,off8,seconds_min,second
 build/double/rtbench rows "$dir" >>"$dir/results.csv"
 build/float/rtbench rows "$dir" >>"$dir/results.csv"
 build/double/rtbench report "$dir"
+# Peers: smallpt's scene at equal noise, Embree's rays, spheres by the thousand, copies of one
+# triangle (bench/peers.sh; each peer skipped, saying how to get it, where it is absent)
+sh bench/peers.sh "$out" "$report" "${PEER_RUNS:-5}"
+
 {
 echo
 echo "## More: robustness.md, methods.md, results.md (accuracy against time), in this folder"

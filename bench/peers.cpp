@@ -22,23 +22,24 @@ static double Decode(int v, bool srgb) {
     return x <= 0.04045 ? x / 12.92 : std::pow((x + 0.055) / 1.055, 2.4);
 }
 
-// rtbench noise IMAGE N REFERENCE R srgb|gamma: prints sigma, the noise of one sample a pixel.
+// rtbench noise IMAGE CURVE N REFERENCE CURVE R, each CURVE srgb or gamma (x^(1/2.2)): prints
+// sigma, the noise of one sample a pixel. (With N = 1 and R huge: the RMS difference itself.)
 int NoiseMain(char **argv) {
     Image a, b;
     std::string error;
-    if (!ReadImage(argv[0], &a, &error) || !ReadImage(argv[2], &b, &error)) {
+    if (!ReadImage(argv[0], &a, &error) || !ReadImage(argv[3], &b, &error)) {
         fprintf(stderr, "%s\n", error.c_str());
         return 1;
     }
-    double n = atof(argv[1]), r = atof(argv[3]);
-    bool srgb = std::string(argv[4]) == "srgb";
+    bool srgbA = std::string(argv[1]) == "srgb", srgbB = std::string(argv[4]) == "srgb";
+    double n = atof(argv[2]), r = atof(argv[5]);
     if (a.width != b.width || a.height != b.height || !(n > 0) || !(r > 0)) {
         fprintf(stderr, "noise: images of different sizes, or no sample counts\n");
         return 1;
     }
     double sum = 0;
     for (size_t k = 0; k < a.pixels.size(); k++) {
-        double d = Decode(a.pixels[k], srgb) - Decode(b.pixels[k], srgb);
+        double d = Decode(a.pixels[k], srgbA) - Decode(b.pixels[k], srgbB);
         sum += d * d;
     }
     double square = sum / a.pixels.size();

@@ -74,9 +74,12 @@ static DoubleDouble Neg(DoubleDouble x) { return {-x.hi, -x.lo}; }
 struct DoubleDouble3 {
     DoubleDouble x, y, z;
 };
-// a - b exactly, per component, then times 2^k (exact unless the low part is subnormal)
+// a - b exactly, per component, then times 2^k (exact unless the low part is subnormal). Most
+// triangles need no scaling (k = 0), and ldexp is a library call: it is skipped for them.
 static DoubleDouble3 ExactDifference(dvec3 a, dvec3 b, int k) {
     DoubleDouble x = TwoSum(a.x, -b.x), y = TwoSum(a.y, -b.y), z = TwoSum(a.z, -b.z);
+    if (k == 0)
+        return {x, y, z};
     auto scaled = [k](DoubleDouble w) {
         return DoubleDouble{std::ldexp(w.hi, k), std::ldexp(w.lo, k)};
     };
