@@ -28,7 +28,7 @@ struct PacketLanes {
     Lanes a;          // A = d.d, rounded as Dot rounds it
 };
 
-// Each ray's search so far, as TestBlocks and HitLiveSpheres keep it for one ray.
+// Each ray's search so far, as TestBlocks and TestLiveSpheres keep it for one ray.
 struct PacketSearch {
     const RayPacket *packet;
     unsigned active;    // the packet's rays, a bit each
@@ -95,27 +95,32 @@ static RT_INLINE unsigned RaysMayMeet(vec3 c, real r2, const PacketLanes *l) {
     return ~MissingLanes(o, centre, d, &l->a, &r2s);
 }
 
-// The spheres, in scene order (HitLiveSpheres for each ray): only sphere blocks' lanes that hold
-// one. Each hit lowers its ray's tMax.
+// The spheres: the first step for all the rays at once, sphere by sphere (only sphere blocks'
+// lanes that hold one), then for each ray the spheres it may meet, as one ray's search takes them
+// (TestLiveSpheres: the plain loop's answer, the nearest first). Each hit lowers its ray's tMax.
+// (A packet is made only for a scene of at most kPacketShapes shapes, so a ray's list fits.)
 static RT_INLINE void PacketSpheres(const Scene *scene, const SceneLayout *layout,
                                     const PacketLanes *l, PacketSearch *p) {
     const std::vector<SphereBlock> &blocks = layout->sphereBlocks;
-    for (size_t k = 0; k < blocks.size(); k++) {
+    int places[kLanes][kChunkBlocks * kLanes], count[kLanes] = {};
+    for (size_t k = 0; k < blocks.size() && k < (size_t)kChunkBlocks; k++) {
         const SphereBlock *b = &blocks[k];
         for (unsigned left = b->filled; left != 0; left &= left - 1) {
-            int lane = LowestBit(left), i = (int)k * kLanes + lane;
+            int lane = LowestBit(left);
             vec3 c = {b->center[0][lane], b->center[1][lane], b->center[2][lane]};
-            unsigned live = RaysMayMeet(c, b->r2[lane], l) & p->active;
-            for (; live != 0; live &= live - 1) {
+            for (unsigned live = RaysMayMeet(c, b->r2[lane], l) & p->active; live != 0;
+                 live &= live - 1) {
                 int r = LowestBit(live);
-                RayHit *hit = &p->hits[r];
-                if (!IntersectSphere(&scene->spheres[i], &p->packet->rays[r], 0, p->tMax[r], hit))
-                    continue;
-                hit->index = i;
-                p->tMax[r] = hit->t;
-                Found(p, r);
+                places[r][count[r]++] = (int)k * kLanes + lane;
             }
         }
+    }
+    for (int r = 0; r < p->packet->count; r++) {
+        if (count[r] == 0)
+            continue;
+        SphereSearch s = StartSphereSearch(scene, -1, &p->packet->rays[r], 0, p->tMax[r], false);
+        if (TestLiveSpheres<false>(&s, places[r], count[r], &p->hits[r]))
+            p->tMax[r] = s.tMax, Found(p, r);
     }
 }
 

@@ -88,32 +88,123 @@ static RT_INLINE unsigned MayMeetOneByOne(const SphereBlock *b, const Ray *ray) 
 // while IntersectSphere runs.
 const int kChunkBlocks = 64 / kLanes;
 
-// The reference test for the spheres whose bits are set in `live` (bit i: spheres[i]), in
-// scene order, as the plain loop (HitList, geometry.cpp) tests them: each hit lowers *tMax
-// exactly when the plain loop's would, and a tie keeps the earlier sphere. hit->index is the
-// bit; the caller adds the chunk's first place. Out of line, and with few enough arguments to be
+// What a search of the spheres keeps from one block (or chunk) to the next, with the numbers of
+// the ray that SphereT reuses, made when first needed (`prepared`): A = d.d, and whether the ray
+// is one IntersectSphere takes unscaled (its direction within the window) with tMin >= 0.
+struct SphereSearch {
+    const Sphere *spheres;
+    const Ray *ray;
+    int skip;
+    real tMin, tMax;
+    int best; // place of the nearest sphere hit so far; -1: none
+    bool anyHit;
+    real a;
+    bool bounds, prepared;
+};
+
+static RT_INLINE SphereSearch StartSphereSearch(const Scene *scene, int skip, const Ray *ray,
+                                                real tMin, real tMax, bool anyHit) {
+    SphereSearch s = {scene->spheres.data(), ray, skip, tMin, tMax, -1, anyHit, 0, false, false};
+    return s;
+}
+
+static RT_INLINE void PrepareSphereT(SphereSearch *s) {
+    s->a = Dot(s->ray->dir, s->ray->dir);
+    s->bounds = s->tMin >= 0 && WithinWindow(MaxComponent(s->ray->dir), kDirectionWindow);
+    s->prepared = true;
+}
+
+// Where IntersectSphere will put its hit on a sphere that the first step passed, found first so
+// that the spheres can be taken nearest first: SolveSphere's t (geometry.cpp), by its very
+// operations in the same order, where IntersectSphere needs no rescaling (the direction, the
+// radius and o - c within its windows, and tMin >= 0); infinity where it will find no root after
+// tMin; 0 where it would rescale (then it is simply tested). IntersectSphere's own answer is
+// this t, or no hit at all (beyond tMax, or a point it refuses), so a sphere whose t lies beyond
+// the nearest hit so far is refused unopened.
+static RT_INLINE real SphereT(const SphereSearch *s, const Sphere *sphere) {
+    vec3 f = s->ray->origin - sphere->center, d = s->ray->dir;
+    real r = sphere->radius;
+    if (!s->bounds || !WithinWindow(r, kLengthWindow) ||
+        !(MaxComponent(f) <= PowerOfTwo(kLengthWindow)))
+        return 0;
+    real A = s->a, halfB = Dot(f, d), C = Dot(f, f) - r * r;
+    if (halfB > 0 && C > 0) // behind the ray
+        return kInfinity;
+    vec3 fxd = Cross(f, d);
+    real disc = A * (r * r) - Dot(fxd, fxd), sqrtDisc = std::sqrt(disc);
+    if (!(disc >= 0))
+        return kInfinity;
+    real q = -(halfB + std::copysign(sqrtDisc, halfB));
+    if (q == 0)
+        return kInfinity;
+    real t0 = C / q, t1 = q / A;
+    if (t0 > t1)
+        std::swap(t0, t1);
+    return t0 > s->tMin ? t0 : t1 > s->tMin ? t1 : kInfinity;
+}
+
+// The reference test (IntersectSphere) for sphere `index`, as the plain loop (HitList,
+// geometry.cpp) would have it: a sphere at the same t as the nearest so far counts only if it
+// comes earlier in the scene (so the tMax it is tested against is one step above). A hit lowers
+// tMax to its t.
+static RT_INLINE bool TestSphere(SphereSearch *s, int index, RayHit *hit) {
+    real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;
+    if (!IntersectSphere(&s->spheres[index], s->ray, s->tMin, limit, hit))
+        return false;
+    hit->index = s->best = index;
+    s->tMax = hit->t;
+    return true;
+}
+
+// The reference test for the spheres at places[0..count) (at most kChunkBlocks * kLanes) whose
+// line the first step could not refuse: a lone one at once; of several, those whose t is not
+// known ahead (SphereT) in their order, then the others nearest first, until one lies beyond the
+// nearest hit, where the rest can only be farther. Each hit is the plain loop's, ties included
+// (TestSphere), so the order changes no answer. Out of line, and with few enough arguments to be
 // reached by a jump: most searches have no such sphere, and they then need no registers saved.
 template <bool kAnyHit>
-static RT_NOINLINE bool HitLiveSpheres(const Sphere *spheres, uint64_t live, int skip,
-                                       const Ray *ray, real tMin, real *tMax, RayHit *hit) {
+static RT_NOINLINE bool TestLiveSpheres(SphereSearch *s, const int *places, int count,
+                                        RayHit *hit) {
+    struct Later {
+        real t;
+        int index;
+    } later[64];
+    int waiting = 0;
     bool found = false;
-    for (; live != 0; live &= live - 1) {
-        int i = LowestBit(live);
-        if (i == skip || !IntersectSphere(&spheres[i], ray, tMin, *tMax, hit))
+    if (count > 1 && !s->prepared)
+        PrepareSphereT(s);
+    for (int k = 0; k < count; k++) {
+        int index = places[k];
+        if (index == s->skip)
             continue;
-        hit->index = i;
-        *tMax = hit->t;
-        found = true;
-        if (kAnyHit)
-            return true;
+        real t = count == 1 ? 0 : SphereT(s, &s->spheres[index]);
+        if (t > 0) { // kept in order of t, by insertion
+            int at = waiting++;
+            for (; at > 0 && later[at - 1].t > t; at--)
+                later[at] = later[at - 1];
+            later[at] = {t, index};
+        } else if (TestSphere(s, index, hit)) {
+            found = true;
+            if (kAnyHit)
+                return true;
+        }
     }
+    for (int k = 0; k < waiting && !(later[k].t > s->tMax); k++)
+        if (TestSphere(s, later[k].index, hit)) {
+            found = true;
+            if (kAnyHit)
+                return true;
+        }
     return found;
 }
 
-static RT_INLINE bool HitLive(const Sphere *spheres, uint64_t live, int skip, const Ray *ray,
-                              real tMin, real *tMax, bool anyHit, RayHit *hit) {
-    return anyHit ? HitLiveSpheres<true>(spheres, live, skip, ray, tMin, tMax, hit)
-                  : HitLiveSpheres<false>(spheres, live, skip, ray, tMin, tMax, hit);
+// The spheres whose bits are set in `live` (bit i: the sphere at place first + i).
+static RT_INLINE bool HitLive(SphereSearch *s, uint64_t live, int first, RayHit *hit) {
+    int places[64], count = 0;
+    for (; live != 0; live &= live - 1)
+        places[count++] = first + LowestBit(live);
+    return s->anyHit ? TestLiveSpheres<true>(s, places, count, hit)
+                     : TestLiveSpheres<false>(s, places, count, hit);
 }
 
 // The bits of the spheres in blocks [first, last) that pass the first step, sphere
@@ -146,7 +237,12 @@ static RT_INLINE bool TestOneChunk(const Scene *scene, const SceneLayout *layout
     // no loop at all
     uint64_t live =
         n == 1 ? ChunkMask<kVectors>(blocks, 0, 1, ray) : ChunkMask<kVectors>(blocks, 0, n, ray);
-    return live != 0 && HitLive(scene->spheres.data(), live, skip, ray, tMin, tMax, anyHit, hit);
+    if (live == 0)
+        return false;
+    SphereSearch s = StartSphereSearch(scene, skip, ray, tMin, *tMax, anyHit);
+    bool found = HitLive(&s, live, 0, hit);
+    *tMax = s.tMax;
+    return found;
 }
 
 // The same for any number of blocks, a chunk at a time.
@@ -155,17 +251,12 @@ static RT_INLINE bool TestChunks(const Scene *scene, const SceneLayout *layout, 
                                  const Ray *ray, real tMin, real *tMax, bool anyHit, RayHit *hit) {
     const SphereBlock *blocks = layout->sphereBlocks.data();
     int n = Blocks((int)layout->sphereCount);
+    SphereSearch s = StartSphereSearch(scene, skip, ray, tMin, *tMax, anyHit);
     bool found = false;
-    for (int chunk = 0; chunk < n; chunk += kChunkBlocks) {
+    for (int chunk = 0; chunk < n && !(found && anyHit); chunk += kChunkBlocks) {
         uint64_t live = ChunkMask<kVectors>(blocks, chunk, std::min(n, chunk + kChunkBlocks), ray);
-        int first = chunk * kLanes;
-        if (live == 0 || !HitLive(scene->spheres.data() + first, live, skip - first, ray, tMin,
-                                  tMax, anyHit, hit))
-            continue;
-        hit->index += first;
-        found = true;
-        if (anyHit)
-            return true;
+        found = (live != 0 && HitLive(&s, live, chunk * kLanes, hit)) || found;
     }
+    *tMax = s.tMax;
     return found;
 }

@@ -224,39 +224,24 @@ static RT_INLINE bool WalkTree(const SceneLayout *layout, Search *s, RayHit *hit
 
 // ---- the spheres' tree -------------------------------------------------------------------
 
-// What a search of the spheres' tree keeps: as Search for the triangles.
-struct SphereSearch {
-    const Sphere *spheres;
-    const Ray *ray;
-    SphereLaneRay lanes; // (with vectors)
-    int skip;
-    real tMin, tMax;
-    int best; // place of the nearest sphere hit so far; -1: none
-    bool anyHit;
-};
-
-// A leaf's spheres: the first step on a block at a time (MayMeet), the stable test for the
-// rest. A sphere at the same t as the nearest so far counts only if it comes earlier in the
-// scene, as in the plain loop (so the tMax it is tested against is one step above).
+// A leaf's spheres: the first step on a block at a time (MayMeet), the reference test for the
+// rest (TestLiveSpheres, which keeps the plain loop's answer, ties included).
 template <bool kVectors>
 static RT_INLINE bool TestSphereBlocks(const SphereBlock *blocks, int first, int count,
-                                       SphereSearch *s, RayHit *hit) {
+                                       const SphereLaneRay *lanes, SphereSearch *s, RayHit *hit) {
     bool found = false;
     for (const SphereBlock *b = blocks + first; b < blocks + first + count; b++) {
-        unsigned live = kVectors ? MayMeet(b, &s->lanes) : MayMeetOneByOne(b, s->ray);
-        for (; live != 0; live &= live - 1) {
-            int index = b->index[LowestBit(live)];
-            if (index == s->skip)
-                continue;
-            real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;
-            if (!IntersectSphere(&s->spheres[index], s->ray, s->tMin, limit, hit))
-                continue;
-            hit->index = s->best = index;
-            s->tMax = hit->t;
-            found = true;
-            if (s->anyHit)
-                return true;
-        }
+        unsigned live = kVectors ? MayMeet(b, lanes) : MayMeetOneByOne(b, s->ray);
+        if (live == 0)
+            continue;
+        int places[kLanes], n = 0;
+        for (; live != 0; live &= live - 1)
+            places[n++] = b->index[LowestBit(live)];
+        found = (s->anyHit ? TestLiveSpheres<true>(s, places, n, hit)
+                           : TestLiveSpheres<false>(s, places, n, hit)) ||
+                found;
+        if (found && s->anyHit)
+            return true;
     }
     return found;
 }
@@ -264,15 +249,17 @@ static RT_INLINE bool TestSphereBlocks(const SphereBlock *blocks, int first, int
 template <bool kVectors>
 static RT_INLINE bool WalkSpheres(const Scene *scene, const SceneLayout *layout, int skip,
                                   const Ray *ray, real tMin, real *tMax, bool anyHit, RayHit *hit) {
-    SphereSearch s = {scene->spheres.data(), ray, {}, skip, tMin, *tMax, -1, anyHit};
+    SphereSearch s = StartSphereSearch(scene, skip, ray, tMin, *tMax, anyHit);
+    SphereLaneRay lanes; // (with vectors)
     if (kVectors)
-        SplatSphereRay(ray, &s.lanes);
+        SplatSphereRay(ray, &lanes);
     const SphereBlock *blocks = layout->sphereBlocks.data();
     SphereSearch *search = &s;
+    const SphereLaneRay *each = &lanes;
     bool found = WalkNodes<kVectors>(layout->sphereNodes.data(), ray, tMin, &s.tMax, anyHit,
-                                     [blocks, search, hit](int first, int count) {
+                                     [blocks, each, search, hit](int first, int count) {
                                          return TestSphereBlocks<kVectors>(blocks, first, count,
-                                                                           search, hit);
+                                                                           each, search, hit);
                                      });
     *tMax = s.tMax;
     return found;
