@@ -36,11 +36,11 @@ PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 # The teaching core at the top (every scene_*.cpp is a scene built in C++: README, "Writing a
 # scene in C++"), and the three wings: robust/, fast/ and app/.
 SCENES = $(basename $(wildcard scene_*.cpp))
-TOP = geometry camera shade path render $(SCENES)
+TOP = geometry camera shade path render smooth $(SCENES)
 ROBUST = robust/watertight robust/plane robust/rescale robust/leave
 FAST = fast/commit fast/build fast/kernel fast/commit_spheres
 APP = app/options app/modes app/image app/image_read app/text app/scene_file app/statements \
-      app/mesh app/probe app/views
+      app/mesh app/mesh_words app/probe app/views
 CORE = $(TOP) $(ROBUST) $(FAST) $(APP)
 TESTS = $(basename $(notdir $(wildcard tests/test_*.cpp))) exercise hard_cases hard_cases_offset robust_scenes
 # The tests that run the program or read files, and use no `real`: compiled once for both builds.

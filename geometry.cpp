@@ -415,7 +415,7 @@ void LeaveSurface(const Scene *scene, const RayHit *hit, vec3 dir, const Methods
     // starter: begin kit-leave-surface
     if (methods->selfHit == SELF_HIT_BOUND) { // handout: skip the shape left, or t_min = 0.001
         ray->origin = LeavingPoint(scene, hit, dir); // robust: off the surface, in from its edges
-        *from = StartLeaving(hit, dir, dir);
+        *from = StartLeaving(scene, hit, dir, dir);
         return;
     }
     // starter: end
@@ -436,9 +436,9 @@ bool ShadowRay(const Scene *scene, const RayHit *hit, vec3 lightPosition, const 
     vec3 side = lightPosition - hit->point;
     // starter: begin kit-shadow-ray
     if (methods->selfHit == SELF_HIT_BOUND) {
-        ray->origin = LeavingPoint(scene, hit, side); // robust: as in LeaveSurface
+        ray->origin = ShadowOrigin(scene, hit, side); // robust: as in LeaveSurface
         ray->dir = lightPosition - ray->origin;
-        *from = StartLeaving(hit, side, ray->dir);
+        *from = StartLeaving(scene, hit, side, ray->dir);
         return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
     }
     // starter: end

@@ -51,6 +51,8 @@ struct Path {
     int scatteredIndex;
     bool departs; // the rays from this diffuse hit start at `departure` (Depart)
     vec3 departure;
+    vec3 shading; // the diffuse hit's SurfaceNormal: its lighting and scattering use it (a
+                  // scattered ray must also leave on the side of its geometric normal)
 };
 
 // RecordRay for a path's rays, with no call where no tree is being drawn (every pixel but the
@@ -117,10 +119,12 @@ static color JournalShade(Path *path, const Ray *ray, bool found, const RayHit *
     }
     if (!(MaxComponent(m->diffuse) > 0)) // black: what a ray would bring back counts for 0
         return m->emit;
-    vec3 toward =
-        hit->normal + RandomUnitVector(DiskPoint(&path->sample, number - 1, SCATTER_DISK));
-    if (!(Dot(toward, hit->normal) > 0)) // the random vector all but -normal: no way out
-        toward = hit->normal;
+    vec3 n = SurfaceNormal(path->scene, hit); // (on a smooth mesh, interpolated)
+    vec3 toward = n + RandomUnitVector(DiskPoint(&path->sample, number - 1, SCATTER_DISK));
+    if (!(Dot(toward, n) > 0)) // the random vector all but -normal: no way out
+        toward = n;
+    if (!(Dot(toward, hit->normal) > 0)) // into the flat triangle it stands for: absorbed
+        return m->emit;
     LeaveSurface(path->scene, hit, toward, &path->settings->methods, &next, &leaving);
     return m->emit + m->diffuse * JournalColor(path, &next, &leaving, RAY_DIFFUSE, number + 1);
 }
@@ -172,7 +176,7 @@ static bool CastShadow(const Path *path, const RayHit *hit, vec3 target, Ray *ra
     if (!path->departs)
         return ShadowRay(path->scene, hit, target, &path->settings->methods, ray, from);
     *ray = {path->departure, target - path->departure};
-    *from = StartLeaving(hit, hit->normal, ray->dir);
+    *from = StartLeaving(path->scene, hit, hit->normal, ray->dir);
     return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
     // starter: end
 }
@@ -236,7 +240,7 @@ static color PointLights(Path *path, const RayHit *hit, color rho) {
             continue;
         vec3 toLight = light.position - hit->point;
         real distance = SafeLength(toLight);
-        real cosTheta = Dot(hit->normal, toLight) / distance;
+        real cosTheta = Dot(path->shading, toLight) / distance;
         if (!(cosTheta > 0))
             continue;
         Ray shadow;
@@ -290,7 +294,7 @@ static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
                            PathRandomPair(&path->sample, path->bounce, EMITTER_UV));
     vec3 toPoint = p - hit->point;
     real distance = SafeLength(toPoint); // (rescaled where its square would leave the numbers)
-    real cosTheta = Dot(hit->normal, toPoint) / distance;
+    real cosTheta = Dot(path->shading, toPoint) / distance;
     real cosLight = std::fabs(Dot(n, toPoint)) / distance;
     if (!(cosTheta > 0) || !(cosLight > 0) || (!inCone && !Faces(path->scene, e, hit, p, n)) ||
         !EmitterVisible(path, hit, e, p))
@@ -345,6 +349,7 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     color rho = m->diffuse;
     if (!(MaxComponent(rho) > 0)) // black: it scatters nothing, not even the lights' light
         return false;
+    path->shading = SurfaceNormal(path->scene, hit);
     Depart(path, hit); // step 1: the emitters' shadow ray first, then the point lights'
     color direct = Emitters(path, hit, rho, last);
     if (!path->scene->lights.empty())
@@ -353,10 +358,10 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     if (last)
         return false;
     ScatterMethod method = path->settings->path.scatter; // step 3: cosine sampling, drawn
-    vec3 n = hit->normal;
+    vec3 n = path->shading;
     vec3 dir = ScatterDirection(method, n, DiskPoint(&path->sample, path->bounce, SCATTER_DISK));
     real cosTheta = Dot(dir, n);
-    if (!(cosTheta > 0))
+    if (!(cosTheta > 0) || !(Dot(dir, hit->normal) > 0)) // (below the flat triangle: absorbed)
         return false;
     // The estimator's factor BRDF cos / density: with cosine sampling cos / pi over cos / pi,
     // which cancels exactly, so it is rho itself (the white furnace's exact answer)
@@ -370,7 +375,8 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     if (!path->departs)
         LeaveSurface(path->scene, hit, dir, &path->settings->methods, &path->ray, &path->from);
     else
-        path->ray = {path->departure, dir}, path->from = StartLeaving(hit, hit->normal, dir);
+        path->ray = {path->departure, dir},
+        path->from = StartLeaving(path->scene, hit, hit->normal, dir);
     // starter: end
     return true;
 }
@@ -454,6 +460,7 @@ static color FullPath(Path *path, bool foundFirst, const RayHit *firstHit) {
 
 color TraceFoundPath(const Scene *scene, const RenderSettings *settings, const Ray *primary,
                      bool found, const RayHit *hit, int i, int j, int s, TraceLog *log) {
+    log->stats.primaryHits += found;
     Path path = {scene,
                  settings,
                  log,
@@ -469,6 +476,7 @@ color TraceFoundPath(const Scene *scene, const RenderSettings *settings, const R
                  SHAPE_SPHERE,
                  -1,
                  false,
+                 {0, 0, 0},
                  {0, 0, 0}};
     if (settings->path.estimator == ESTIMATOR_JOURNAL)
         return JournalRay(&path, primary, RAY_PRIMARY, found, hit, 1);

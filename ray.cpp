@@ -97,8 +97,14 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
         Complain(error);
         return 3;
     }
+    bool shapes = !scene->spheres.empty() || !scene->triangles.empty(); // (else said before)
+    if (!opt->view && stats.primary > 0 && stats.primaryHits == 0 && shapes)
+        Complain("warning: no eye ray met a shape: the image is the background alone (is the "
+                 "camera turned away, or the scene far larger or smaller than it sees? --stats "
+                 "gives each mesh's bounding box)");
     if (opt->stats) {
         fprintf(stderr, "%s\n", layoutText.c_str());
+        PrintMeshes(scene);
         PrintStats(&stats, settings, threads, renderSeconds, SecondsSince(start));
     }
     return 0;

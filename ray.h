@@ -103,6 +103,13 @@ struct Triangle {
     int material;
 };
 
+// The unit normals a smooth mesh gives a triangle's corners (a mesh file's `vn`, or averaged over
+// the faces around each vertex: the mesh statement's `smooth`), each on the triangle's outward
+// side; all three 0 for a flat triangle. Only shading reads them (SurfaceNormal, smooth.cpp).
+struct CornerNormals {
+    vec3 a, b, c;
+};
+
 // Surface description, with the scene file's defaults: white, matte, opaque. mirror = 1 is a
 // perfect mirror whose own colour is not used; ior > 0 makes the material clear glass.
 struct Material {
@@ -136,6 +143,12 @@ enum ShadingModel {
 
 struct Accelerator; // speed machinery behind the searches (the seam, below)
 
+// The triangles one `mesh` statement made: scene->triangles[first, first + count), from `path`.
+struct MeshRange {
+    std::string path;
+    size_t first, count;
+};
+
 // Everything a render needs to know about the world. Shapes name materials by index.
 struct Scene {
     int width, height; // image size in pixels
@@ -147,9 +160,11 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Sphere> spheres;
     std::vector<Triangle> triangles;
+    std::vector<CornerNormals> cornerNormals; // empty (every triangle flat), or one a triangle
     std::vector<Light> lights;
     std::vector<std::string> meshFiles; // the OBJ files `mesh` statements read, as opened: inputs
                                         // that an output must not replace
+    std::vector<MeshRange> meshes;      // what each mesh statement made, for --stats
     std::vector<std::string> warnings;  // what the reader found legal but probably not meant
                                         // ("FILE:LINE: warning: ..."); main prints them
     const Accelerator *accelerator = nullptr; // installed by main (fast/); null: every search
@@ -301,6 +316,33 @@ bool ShadowRay(const Scene *scene, const RayHit *hit, vec3 lightPosition, const 
 // lightPosition (the shadow ray meets no shape at t < 1).
 bool LightVisible(const Scene *scene, const Methods *methods, const RayHit *hit,
                   vec3 lightPosition);
+
+// ---- smooth.cpp: the shading normal of a smooth mesh ----------------------------------------
+
+// The barycentric weights w of point p on triangle t: p = w[0] a + w[1] b + w[2] c, each in [0, 1].
+void Barycentric(const Triangle *t, vec3 p, real w[3]);
+
+// Whether the hit is on a triangle whose corners carry normals (scene->cornerNormals; a flat
+// triangle's are all 0). Asked of every hit, so inline: most scenes have none at all.
+inline bool HasCornerNormals(const Scene *scene, const RayHit *hit) {
+    if (scene->cornerNormals.empty() || hit->shape != SHAPE_TRIANGLE ||
+        (size_t)hit->index >= scene->cornerNormals.size())
+        return false;
+    vec3 a = scene->cornerNormals[hit->index].a;
+    return a.x != 0 || a.y != 0 || a.z != 0;
+}
+
+// SurfaceNormal (below) where the hit has corner normals.
+vec3 SmoothNormal(const Scene *scene, const RayHit *hit);
+
+// The normal that lighting uses at a hit: a smooth mesh's corner normals interpolated at the hit
+// point, turned to the side the ray came from; anywhere else the geometric normal, hit->normal.
+// A light that this normal faces but the flat triangle does not is seen or not as the shadow ray
+// finds: from a smooth mesh it starts where the curved surface would be (robust/leave.cpp), and
+// the triangle it leaves is tested too, so light through a closed mesh's back is blocked by it.
+inline vec3 SurfaceNormal(const Scene *scene, const RayHit *hit) {
+    return HasCornerNormals(scene, hit) ? SmoothNormal(scene, hit) : hit->normal;
+}
 
 // ---- the seam: speed machinery that main may install (fast/) --------------------------------
 

@@ -47,6 +47,7 @@ static void AddStats(const RayStats *from, RayStats *to) {
     to->refraction += from->refraction;
     to->specularTerms += from->specularTerms;
     to->diffuse += from->diffuse;
+    to->primaryHits += from->primaryHits;
 }
 
 // Cell s of n inside the unit pixel, on a regular grid that holds exactly n cells: `rows` =

@@ -130,7 +130,8 @@ const real kMinRayWeight = real(1) / 4096;
 struct RayStats {
     uint64_t primary, shadow, reflection, refraction;
     uint64_t specularTerms;
-    uint64_t diffuse; // rays scattered by diffuse surfaces (`shading path`)
+    uint64_t diffuse;     // rays scattered by diffuse surfaces (`shading path`)
+    uint64_t primaryHits; // primary rays that met a shape (none: main warns)
 };
 
 // One ray of a traced ray tree (`--pixel`): what it was, what it hit, the colour it brought

@@ -76,19 +76,22 @@ struct Surface {
 
 // The assignment handout's rule (`shading floor`): kd * max(ambient, S), where S sums I (N.L)
 // over the lights in front of the surface that no shape hides. A light behind the surface
-// (N.L <= 0) contributes nothing and costs no shadow ray (second handout).
+// (N.L <= 0) contributes nothing and costs no shadow ray (second handout). N is the surface's
+// normal; on a smooth mesh, the one interpolated from its corners (SurfaceNormal), and a light
+// behind the flat triangle is then seen or not as its shadow ray finds (LightVisible).
 static color FloorColor(const Shading *sh, const Surface *s) {
     // starter: begin floor
     const RayHit *hit = s->hit;
     real a = sh->scene->ambient; // handout: kd * max(ambient, N.L)
     if (!LightsCanShow(sh->scene, s->m, sh->settings->effects.lightSum))
         return a * s->m->diffuse;
+    vec3 n = SurfaceNormal(sh->scene, hit);
     color sum = {0, 0, 0};
     for (const Light &light : sh->scene->lights) {
         if (!Shines(&light))
             continue;
         vec3 toLight = light.position - hit->point;
-        real nDotL = Dot(hit->normal, toLight);
+        real nDotL = Dot(n, toLight);
         if (!(nDotL > 0) || !LightIsVisible(sh, hit, &light))
             continue;
         sum = sum + (nDotL / SafeLength(toLight)) * light.intensity; // handout: N.normalize(L)
@@ -101,12 +104,12 @@ static color FloorColor(const Shading *sh, const Surface *s) {
 //   ka Ia + sum over visible lights with N.L > 0 of  Ii (kd (N.L) + ks max(0, R.V)^n),
 // R = -L + 2 (N.L) N the light's mirror direction, V toward the viewer, all unit vectors.
 // The N.L > 0 gate keeps a light below the horizon from making a highlight; max(0, R.V) before
-// pow keeps a fractional n from meeting a negative base (a NaN).
+// pow keeps a fractional n from meeting a negative base (a NaN). N as in FloorColor.
 static color PhongColor(const Shading *sh, const Surface *s) {
     // starter: begin phong
     const Material *m = s->m;
     color result = sh->scene->ambient * m->ambient;
-    vec3 n = s->hit->normal, v = -SafeNormalize(s->ray->dir);
+    vec3 n = SurfaceNormal(sh->scene, s->hit), v = -SafeNormalize(s->ray->dir);
     bool specular = sh->settings->effects.specular && m->specular > 0;
     if (!LightsCanShow(sh->scene, m, sh->settings->effects.lightSum))
         return result;
@@ -265,6 +268,7 @@ static color ShadeFound(const Scene *scene, const RenderSettings *settings, RayK
                         const Ray *ray, RayChain chain, bool found, const RayHit *hit,
                         TraceLog *log) {
     CountRay(kind, &log->stats);
+    log->stats.primaryHits += kind == RAY_PRIMARY && found;
     int node = RecordRay(kind, ray, log);
     if (settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads the hash
         log->surfaces = MixSurface(log->surfaces, found ? 2 * hit->index + hit->shape + 1 : 0);

@@ -141,13 +141,33 @@ struct MeshStep {
     vec3 offset;       // MESH_TRANSLATE
 };
 
-// Reads the transform words tokens[first..]: `scale S`, `rotate x|y|z DEGREES`, `translate X Y
-// Z`, any number of each. Returns false with *error for an unknown word or a bad value.
+// Which normals a mesh's triangles are shaded with: the file's own (`vn`, where a face's corners
+// name them), none (`flat`), or averaged over the faces around each vertex (`smooth`).
+enum MeshNormals { MESH_NORMALS_FROM_FILE, MESH_FLAT, MESH_SMOOTH };
+
+// Every word of a mesh statement after its material.
+struct MeshWords {
+    std::vector<MeshStep> steps; // the transform words, in order
+    MeshNormals normals;
+    real fit; // `fit S` (> 0): scaled and centred so that its longest side is S, first; 0: none
+};
+
+// Reads the words tokens[first..]: the transform words `scale S`, `rotate x|y|z DEGREES`,
+// `translate X Y Z`, any number of each, and `flat`, `smooth`, `fit S`, each at most once.
+// Returns false with *error for an unknown word or a bad value.
+bool ParseMeshWords(const std::vector<std::string> &tokens, size_t first, MeshWords *words,
+                    std::string *error);
+
+// The transform words alone (ParseMeshWords, the other words refused).
 bool ParseMeshTransform(const std::vector<std::string> &tokens, size_t first,
                         std::vector<MeshStep> *steps, std::string *error);
 
 // The vertex p moved by every step, in order.
 vec3 TransformVertex(const std::vector<MeshStep> &steps, vec3 p);
+
+// A normal n turned by the steps: the inverse transpose of each step, which for a uniform scale
+// and a translation is nothing and for a rotation is the rotation; made unit length.
+vec3 TransformNormal(const std::vector<MeshStep> &steps, vec3 n);
 
 // Reads a Wavefront OBJ file, open as `file` and called meshName in messages: every face as
 // triangles of `material` (a fan from its first corner), its vertices moved by `steps`,
@@ -158,6 +178,14 @@ vec3 TransformVertex(const std::vector<MeshStep> &steps, vec3 p);
 bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<MeshStep> &steps,
              size_t maxTriangles, const std::string &statement, std::vector<Triangle> *triangles,
              std::string *error);
+
+// ReadObj with all of a mesh statement's words, into the scene: its triangles, and where the
+// mesh is smooth (MeshWords::normals, a file's `vn`), their CornerNormals, each turned to its
+// triangle's outward side (scene->cornerNormals grows to hold them, flat triangles before them
+// getting zeros). `fit` is applied by the caller, as steps.
+bool ReadObjInto(FILE *file, const char *meshName, int material, const MeshWords *words,
+                 size_t maxTriangles, const std::string &statement, Scene *scene,
+                 std::string *error);
 
 // A mesh statement's PATH as rt opens it: relative to the folder of the scene file that names it
 // (an absolute path as given).
@@ -290,6 +318,10 @@ bool ChooseOutput(const Options *opt, const Scene *scene, bool sceneIsFile,
 // The warnings of a render (not of a debug view): a scene that can only be one flat colour
 // (OneColourWarning), and what it would hide without a word (InsideWarnings).
 void WarnOfRender(const Options *opt, const Scene *scene, const RenderSettings *settings);
+
+// --stats: each mesh statement's triangles and their bounding box (where the model is, and how big,
+// after its words: to frame it with the camera, or to choose `fit`).
+void PrintMeshes(const Scene *scene);
 
 // --stats: the image, the time, the rays by kind, the speed and the effects used (`threads`: the
 // threads the render ran on, which may be fewer than --threads asked for).

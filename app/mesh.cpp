@@ -1,10 +1,14 @@
-// app/mesh.cpp -- the scene file's `mesh PATH MATERIAL [transform words]`: Wavefront OBJ meshes.
+// app/mesh.cpp -- the scene file's `mesh PATH MATERIAL [words]`: Wavefront OBJ meshes.
 //
 // The OBJ file is read a line at a time (ReadTextLine, as scene files are), never whole: only
-// the vertex positions are kept, because faces name them by number, and each face goes straight
-// into the scene's triangles as a fan from its first corner. `v` and `f` are the statements that
-// make geometry; every other statement (texture coordinates, normals, groups, materials, lines,
-// points) is skipped. Errors are values, "MESH:LINE: message", as for scene files.
+// the vertex positions and normals are kept, because faces name them by number, and each face
+// goes straight into the scene's triangles as a fan from its first corner. `v`, `vn` and `f` are
+// the statements read; every other statement (texture coordinates, groups, materials, lines,
+// points) is skipped. A smooth mesh's corner normals are made once the file is read (the `vn` a
+// face names, or for `smooth` the faces' normals averaged at each vertex). The words after the
+// material are mesh_words.cpp's; `fit` needs the mesh's size before any vertex is placed, so a
+// first pass reads the positions alone. Errors are values, "MESH:LINE: message", as for scene
+// files.
 #include "app.h"
 
 #include <algorithm>
@@ -25,151 +29,56 @@ static bool MeshFail(const char *meshName, int line, const std::string &message,
     return false;
 }
 
-// ---- transform words -------------------------------------------------------------------------
-
-// cos and sin of an angle in degrees. A multiple of 90 degrees gets exact values (0, +-1), so
-// `rotate y 90` moves a vertex to exactly the place a student predicts by hand; pi/2 in radians
-// is not a floating-point number, and cos(pi/2) would be 6e-17 instead of 0. The angle is first
-// reduced to (-360, 360) by fmod, which is exact, so `rotate z 3645` is as accurate as 45; other
-// angles go through radians in double and are rounded once to real.
-static void CosSinDegrees(double degrees, real *cosine, real *sine) {
-    static const real kCos[4] = {1, 0, -1, 0}, kSin[4] = {0, 1, 0, -1}; // 0, 90, 180, 270
-    double reduced = std::fmod(degrees, 360.0);
-    if (std::fmod(reduced, 90.0) == 0) {
-        int quarter = ((int)(reduced / 90) + 4) % 4; // reduced / 90 is a whole number in -3..3
-        *cosine = kCos[quarter];
-        *sine = kSin[quarter];
-        return;
-    }
-    double radians = reduced * (3.14159265358979323846 / 180);
-    *cosine = (real)std::cos(radians);
-    *sine = (real)std::sin(radians);
-}
-
-// The step a word makes from its values: v, already read as numbers, and for rotate its axis.
-static bool MakeMeshStep(const std::string &word, const std::string &axis, const real *v,
-                         MeshStep *step, std::string *error) {
-    *step = MeshStep();
-    if (word == "scale") {
-        step->kind = MESH_SCALE;
-        step->factor = v[0];
-        if (!(v[0] > 0)) // 0 would flatten the mesh, < 0 would turn it inside out
-            *error = "scale must be > 0";
-        return v[0] > 0;
-    }
-    if (word == "translate") {
-        step->kind = MESH_TRANSLATE;
-        step->offset = {v[0], v[1], v[2]};
-        return true;
-    }
-    step->kind = MESH_ROTATE;
-    step->axis = axis == "x" ? 0 : axis == "y" ? 1 : axis == "z" ? 2 : -1;
-    CosSinDegrees(v[0], &step->cosine, &step->sine);
-    if (step->axis < 0)
-        *error = "rotate: expected an axis x, y or z, not " + Shown(axis);
-    return step->axis >= 0;
-}
-
-// One word and its values, tokens[*k..]; moves *k past them.
-static bool ParseMeshStep(const std::vector<std::string> &tokens, size_t *k, MeshStep *step,
-                          std::string *error) {
-    const std::string &word = tokens[*k];
-    size_t count = word == "scale" ? 1 : word == "rotate" ? 2 : word == "translate" ? 3 : 0;
-    if (count == 0) {
-        *error = "unknown transform word " + Shown(word) +
-                 " (expected scale, rotate or translate; if the file name has a space, that is "
-                 "why: file names may not contain spaces)";
-        return false;
-    }
-    if (*k + count >= tokens.size()) {
-        *error = word + ": expected " +
-                 (count == 1   ? "a factor (scale 2 doubles the mesh)"
-                  : count == 2 ? "an axis and an angle in degrees (rotate y 30)"
-                               : "three numbers X Y Z (translate 0 -1 -5)");
-        return false;
-    }
-    real v[3];
-    size_t firstNumber = word == "rotate" ? 2 : 1; // rotate's first value is its axis
-    for (size_t j = firstNumber; j <= count; j++) {
-        if (!ParseReal(tokens[*k + j], &v[j - firstNumber], error)) {
-            *error = word + ": " + *error;
-            return false;
-        }
-    }
-    if (!MakeMeshStep(word, tokens[*k + 1], v, step, error))
-        return false;
-    *k += 1 + count;
-    return true;
-}
-
-bool ParseMeshTransform(const std::vector<std::string> &tokens, size_t first,
-                        std::vector<MeshStep> *steps, std::string *error) {
-    steps->clear();
-    real size = 1; // what the scale words make of a length of 1, step by step as a vertex's
-    for (size_t k = first; k < tokens.size();) {
-        MeshStep step;
-        if (!ParseMeshStep(tokens, &k, &step, error))
-            return false;
-        steps->push_back(step);
-        size = step.kind == MESH_SCALE ? step.factor * size : size;
-    }
-    // Scale words that together shrink a mesh below the normal numbers would round its
-    // vertices toward 0 and make it vanish without a word (a mesh grown beyond the range of
-    // numbers is refused at its first vertex)
-    if (!(size >= std::numeric_limits<real>::min())) {
-        *error = "scale: the mesh would shrink below the range of numbers";
-        return false;
-    }
-    return true;
-}
-
-// Each step is applied as written, not folded into one matrix first: the arithmetic on a vertex
-// is exactly what the words say (one rounding per operation), so a rotation by 90 degrees only
-// swaps and negates coordinates, and `scale 2` only doubles them, both without rounding.
-vec3 TransformVertex(const std::vector<MeshStep> &steps, vec3 p) {
-    for (const MeshStep &step : steps) {
-        if (step.kind == MESH_SCALE) {
-            p = step.factor * p;
-        } else if (step.kind == MESH_TRANSLATE) {
-            p = p + step.offset;
-        } else {
-            // Counter-clockwise seen from the positive axis: the axes u, w after it (y, z for
-            // x; z, x for y; x, y for z) turn as u' = cos u - sin w, w' = sin u + cos w
-            real c[3] = {p.x, p.y, p.z};
-            int u = (step.axis + 1) % 3, w = (step.axis + 2) % 3;
-            real cu = c[u], cw = c[w];
-            c[u] = step.cosine * cu - step.sine * cw;
-            c[w] = step.sine * cu + step.cosine * cw;
-            p = {c[0], c[1], c[2]};
-        }
-    }
-    return p;
-}
-
 // ---- the OBJ statements ----------------------------------------------------------------------
 
-// `v x y z [w]`: the position, moved by the transform words. Further numbers (w, or the vertex
-// colour r g b that some exporters add) are checked as numbers and not used.
-static bool ReadVertex(const std::vector<std::string> &tokens, const std::vector<MeshStep> &steps,
-                       const std::string &statement, std::vector<vec3> *vertices,
-                       std::string *error) {
-    real v[3];
+// What a mesh file gives as it is read: the positions (moved by the transform words) and normals
+// (turned by them) named so far, and for each triangle made, its corners' places in both lists
+// (-1: no normal), kept where the mesh's corner normals are to be made once it is read.
+struct MeshReading {
+    std::vector<vec3> vertices, normals;
+    std::vector<int> cornerVertex, cornerNormal; // 3 a triangle
+    bool keepCorners;
+    bool fileNormals; // the file's `vn` are read (else skipped, as are the corners' vn indices)
+    int line;         // the line being read
+    int badNormal;    // the first line with a normal index out of range (its face is flat); 0
+    std::string badIndex;
+};
+
+// The three numbers of `v x y z [w]` or `vn x y z`. Further numbers (w, or the vertex colour
+// r g b that some exporters add) are checked as numbers and not used.
+static bool ReadThree(const std::vector<std::string> &tokens, real v[3], std::string *error) {
     for (size_t k = 1; k < tokens.size(); k++) { // (each word first: `v 0,0,0` is one bad number)
         real value;
         if (!ParseReal(tokens[k], &value, error)) {
-            *error = "v: " + *error;
+            *error = tokens[0] + ": " + *error;
             return false;
         }
         if (k <= 3)
             v[k - 1] = value;
     }
     if (tokens.size() < 4) {
-        *error = "v: expected 3 numbers x y z, found " + std::to_string(tokens.size() - 1);
+        *error =
+            tokens[0] + ": expected 3 numbers x y z, found " + std::to_string(tokens.size() - 1);
         return false;
     }
-    if (vertices->size() >= kMaxMeshVertices) {
+    return true;
+}
+
+// `v x y z [w]`: the position, moved by the transform words; `vn x y z`: a normal, turned by
+// them (a zero normal stays 0, and the faces that name it are flat).
+static bool ReadVertex(const std::vector<std::string> &tokens, const std::vector<MeshStep> &steps,
+                       const std::string &statement, MeshReading *r, std::string *error) {
+    real v[3];
+    if (!ReadThree(tokens, v, error))
+        return false;
+    std::vector<vec3> *list = tokens[0] == "v" ? &r->vertices : &r->normals;
+    if (list->size() >= kMaxMeshVertices) {
         *error = "too many vertices (rt's limit is " + std::to_string(kMaxMeshVertices) + ")";
         return false;
+    }
+    if (tokens[0] == "vn") {
+        r->normals.push_back(TransformNormal(steps, {v[0], v[1], v[2]}));
+        return true;
     }
     vec3 p = TransformVertex(steps, {v[0], v[1], v[2]});
     if (!IsFinite(p)) {
@@ -177,7 +86,7 @@ static bool ReadVertex(const std::vector<std::string> &tokens, const std::vector
                  " move this vertex beyond the range of numbers";
         return false;
     }
-    vertices->push_back(p);
+    r->vertices.push_back(p);
     return true;
 }
 
@@ -193,40 +102,52 @@ static long long IndexValue(const std::string &v) {
     return v[0] == '-' ? -value : value;
 }
 
-// One corner of a face, `v`, `v/vt`, `v//vn` or `v/vt/vn`: the vertex it names, counted from 1,
-// or back from the last vertex read so far if negative (-1 is the last one). The texture and
-// normal indices are not used, but must be whole numbers, of any size, where they are written.
-// `hint` is added to the message of an index out of range (CapitalsHint).
-static bool ReadCorner(const std::string &corner, size_t vertexCount, const std::string &hint,
-                       size_t *vertex, std::string *error) {
+// The place an index names in a list of `count` items: counted from 1, or back from the last one
+// read so far if negative (-1 is the last one); -1 if out of range.
+static long long IndexPlace(const std::string &index, size_t count) {
+    long long value = IndexValue(index);
+    long long k = value > 0 ? value - 1 : (long long)count + value;
+    return value == 0 || k < 0 || k >= (long long)count ? -1 : k;
+}
+
+// One corner of a face, `v`, `v/vt`, `v//vn` or `v/vt/vn`: the vertex it names, and the normal
+// (-1 where it names none). The texture index is not used, but must be a whole number, of any
+// size, where it is written. `hint` is added to the message of an index out of range
+// (CapitalsHint).
+static bool ReadCorner(const std::string &corner, MeshReading *r, const std::string &hint,
+                       size_t *vertex, int *normal, std::string *error) {
     size_t slash = corner.find('/');
     std::string rest = slash == std::string::npos ? "" : corner.substr(slash + 1);
     size_t second = rest.find('/');
     std::string vt = rest.substr(0, second);
     std::string vn = second == std::string::npos ? "" : rest.substr(second + 1);
     std::string v = corner.substr(0, slash);
-    if (!IsWholeNumber(v) || (!vt.empty() && !IsWholeNumber(vt)) || // (vt and vn are read
-        (!vn.empty() && !IsWholeNumber(vn))) {                      // past, never used)
+    if (!IsWholeNumber(v) || (!vt.empty() && !IsWholeNumber(vt)) || // (vt is read past,
+        (!vn.empty() && !IsWholeNumber(vn))) {                      // never used)
         *error = "f: bad corner " + Shown(corner) + " (expected v, v/vt, v//vn or v/vt/vn)";
         return false;
     }
-    long long index = IndexValue(v);
-    long long k = index > 0 ? index - 1 : (long long)vertexCount + index;
-    if (index == 0 || k < 0 || k >= (long long)vertexCount) {
-        *error = "f: vertex index " + v + " is out of range (" + std::to_string(vertexCount) +
-                 " vertices read so far; the first is 1)" + hint;
+    long long k = IndexPlace(v, r->vertices.size());
+    if (k < 0) {
+        *error = "f: vertex index " + v + " is out of range (" +
+                 std::to_string(r->vertices.size()) + " vertices read so far; the first is 1)" +
+                 hint;
         return false;
     }
-    *vertex = (size_t)k;
+    // (A normal index out of range is no reason to refuse the mesh, which draws without it: the
+    // face is flat, and the reader warns once)
+    long long n = vn.empty() || !r->fileNormals ? -1 : IndexPlace(vn, r->normals.size());
+    if (!vn.empty() && r->fileNormals && n < 0 && r->badNormal == 0)
+        r->badNormal = r->line, r->badIndex = vn;
+    *vertex = (size_t)k, *normal = (int)n;
     return true;
 }
 
 // `f c1 c2 ... cn`: n - 2 triangles (c1, c2, c3), (c1, c3, c4), ..., a fan from the first corner
 // that keeps the face's winding, degenerate ones included (they are harmless: no ray hits them).
-static bool ReadFace(const std::vector<std::string> &tokens, const std::vector<vec3> &vertices,
-                     int material, size_t most, const std::string &hint,
-                     const std::string &statement, std::vector<Triangle> *triangles,
-                     std::string *error) {
+static bool ReadFace(const std::vector<std::string> &tokens, MeshReading *r, int material,
+                     size_t most, const std::string &hint, const std::string &statement,
+                     std::vector<Triangle> *triangles, std::string *error) {
     size_t corners = tokens.size() - 1;
     if (corners < 3) {
         *error = "f: a face needs at least 3 corners, this one has " + std::to_string(corners);
@@ -238,14 +159,20 @@ static bool ReadFace(const std::vector<std::string> &tokens, const std::vector<v
         return false;
     }
     size_t first, previous, next;
-    if (!ReadCorner(tokens[1], vertices.size(), hint, &first, error) ||
-        !ReadCorner(tokens[2], vertices.size(), hint, &previous, error))
+    int firstN, previousN, nextN;
+    if (!ReadCorner(tokens[1], r, hint, &first, &firstN, error) ||
+        !ReadCorner(tokens[2], r, hint, &previous, &previousN, error))
         return false;
     for (size_t k = 3; k <= corners; k++) {
-        if (!ReadCorner(tokens[k], vertices.size(), hint, &next, error))
+        if (!ReadCorner(tokens[k], r, hint, &next, &nextN, error))
             return false;
-        triangles->push_back({vertices[first], vertices[previous], vertices[next], material});
-        previous = next;
+        const std::vector<vec3> &v = r->vertices;
+        triangles->push_back({v[first], v[previous], v[next], material});
+        if (r->keepCorners) {
+            r->cornerVertex.insert(r->cornerVertex.end(), {(int)first, (int)previous, (int)next});
+            r->cornerNormal.insert(r->cornerNormal.end(), {firstN, previousN, nextN});
+        }
+        previous = next, previousN = nextN;
     }
     return true;
 }
@@ -256,10 +183,12 @@ static std::string CapitalsHint(int capitals) {
     return capitals == 0 ? "" : " (lines that begin 'V' or 'F' were skipped: OBJ is lower case)";
 }
 
-bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<MeshStep> &steps,
-             size_t maxTriangles, const std::string &statement, std::vector<Triangle> *triangles,
-             std::string *error) {
-    std::vector<vec3> vertices;
+// The file's lines into *r and *triangles (ReadObj, ReadObjInto): `v`, `f`, and `vn` where
+// `normals` asks for the file's.
+static bool ReadLines(FILE *file, const char *meshName, int material,
+                      const std::vector<MeshStep> &steps, bool normals, size_t maxTriangles,
+                      const std::string &statement, MeshReading *r,
+                      std::vector<Triangle> *triangles, std::string *error) {
     std::vector<std::string> tokens;
     std::string line, why;
     size_t faces = 0, most = triangles->size() + maxTriangles; // (maxTriangles more, at most)
@@ -283,11 +212,12 @@ bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<M
         // counted, to say why a face finds too few vertices, or none is found.)
         capitals += !tokens.empty() && (tokens[0] == "V" || tokens[0] == "F");
         bool read = true;
-        if (!tokens.empty() && tokens[0] == "v")
-            read = ReadVertex(tokens, steps, statement, &vertices, &why);
+        r->line = lineNumber;
+        if (!tokens.empty() && (tokens[0] == "v" || (normals && tokens[0] == "vn")))
+            read = ReadVertex(tokens, steps, statement, r, &why);
         if (!tokens.empty() && tokens[0] == "f") {
-            read = ReadFace(tokens, vertices, material, most, CapitalsHint(capitals), statement,
-                            triangles, &why);
+            read = ReadFace(tokens, r, material, most, CapitalsHint(capitals), statement, triangles,
+                            &why);
             faces++;
         }
         if (!read)
@@ -298,6 +228,91 @@ bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<M
                         "no faces in this file ('f' statements): nothing to draw" +
                             CapitalsHint(capitals),
                         error);
+    return true;
+}
+
+bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<MeshStep> &steps,
+             size_t maxTriangles, const std::string &statement, std::vector<Triangle> *triangles,
+             std::string *error) {
+    MeshReading r;
+    r.keepCorners = r.fileNormals = false, r.badNormal = 0;
+    return ReadLines(file, meshName, material, steps, false, maxTriangles, statement, &r, triangles,
+                     error);
+}
+
+// ---- corner normals --------------------------------------------------------------------------
+
+// The unit normal of a triangle's outward side, (b - a) x (c - a), its edges first brought near
+// 1 by a power of two so that the product neither over- nor underflows; 0 without area.
+static vec3 FaceNormal(const Triangle *t) {
+    vec3 e1 = t->b - t->a, e2 = t->c - t->a;
+    int k = UnitExponent({MaxComponent(e1), MaxComponent(e2), 0});
+    return SafeNormalize(Cross(ScaleByPowerOfTwo(e1, k), ScaleByPowerOfTwo(e2, k)));
+}
+
+static bool IsZero(vec3 v) { return v.x == 0 && v.y == 0 && v.z == 0; }
+
+// For `smooth`: at each vertex, the mean of the unit normals of the faces around it (each face
+// counts once, whatever its size: a few long thin triangles do not outweigh the rest).
+static std::vector<vec3> VertexNormals(const MeshReading *r, const Triangle *first, size_t n) {
+    std::vector<vec3> sum(r->vertices.size(), vec3{0, 0, 0});
+    for (size_t t = 0; t < n; t++) {
+        vec3 face = FaceNormal(&first[t]);
+        for (int i = 0; i < 3; i++)
+            sum[r->cornerVertex[3 * t + i]] = sum[r->cornerVertex[3 * t + i]] + face;
+    }
+    for (vec3 &v : sum)
+        v = SafeNormalize(v);
+    return sum;
+}
+
+// The corner normals of the mesh's triangles, scene->triangles[first..], as `how` asks, each
+// triangle's turned to its outward side (the file's winding and its normals may disagree); a
+// triangle with a zero normal at a corner is flat. Nothing is added for a mesh with none.
+static void AddCornerNormals(const MeshReading *r, MeshNormals how, size_t first, Scene *scene) {
+    size_t n = scene->triangles.size() - first;
+    std::vector<vec3> atVertex;
+    if (how == MESH_SMOOTH)
+        atVertex = VertexNormals(r, &scene->triangles[first], n);
+    std::vector<CornerNormals> made(n, CornerNormals{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}});
+    bool any = false;
+    for (size_t t = 0; t < n; t++) {
+        vec3 c[3];
+        for (int i = 0; i < 3; i++) {
+            int k = how == MESH_SMOOTH ? r->cornerVertex[3 * t + i] : r->cornerNormal[3 * t + i];
+            c[i] = k < 0 ? vec3{0, 0, 0} : how == MESH_SMOOTH ? atVertex[k] : r->normals[k];
+        }
+        if (IsZero(c[0]) || IsZero(c[1]) || IsZero(c[2]))
+            continue;
+        if (Dot(c[0] + c[1] + c[2], FaceNormal(&scene->triangles[first + t])) < 0)
+            c[0] = -c[0], c[1] = -c[1], c[2] = -c[2];
+        made[t] = {c[0], c[1], c[2]};
+        any = true;
+    }
+    if (!any)
+        return;
+    scene->cornerNormals.resize(first, CornerNormals{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}});
+    scene->cornerNormals.insert(scene->cornerNormals.end(), made.begin(), made.end());
+}
+
+bool ReadObjInto(FILE *file, const char *meshName, int material, const MeshWords *words,
+                 size_t maxTriangles, const std::string &statement, Scene *scene,
+                 std::string *error) {
+    MeshReading r;
+    r.keepCorners = words->normals != MESH_FLAT;
+    r.fileNormals = words->normals == MESH_NORMALS_FROM_FILE, r.badNormal = 0;
+    size_t first = scene->triangles.size();
+    if (!ReadLines(file, meshName, material, words->steps, r.fileNormals, maxTriangles, statement,
+                   &r, &scene->triangles, error))
+        return false;
+    if (r.keepCorners)
+        AddCornerNormals(&r, words->normals, first, scene);
+    if (r.badNormal > 0)
+        scene->warnings.push_back(std::string(meshName) + ":" + std::to_string(r.badNormal) +
+                                  ": warning: normal index " + r.badIndex + " is out of range (" +
+                                  std::to_string(r.normals.size()) +
+                                  " normals, vn, in the file); faces that name a normal that is "
+                                  "not there are drawn flat");
     return true;
 }
 
@@ -330,11 +345,52 @@ static FILE *OpenMesh(const std::string &path, std::string *error) {
     return file;
 }
 
+// For `fit S`: the box of the file's positions as written (a first pass over its `v` lines), and
+// the steps that put its centre at the origin and make its longest side S, to go before the other
+// words. False with *error where the file cannot be read or its positions have no extent.
+static bool FitSteps(FILE *file, const char *meshName, real size, std::vector<MeshStep> *steps,
+                     std::string *error) {
+    vec3 lo = {kInfinity, kInfinity, kInfinity}, hi = -lo;
+    std::vector<std::string> tokens;
+    std::string line, why;
+    for (int lineNumber = 1;; lineNumber++) {
+        LineStatus status = ReadTextLine(file, lineNumber, &line, &why);
+        if (status == LINE_END)
+            break;
+        if (status != LINE_READ)
+            return MeshFail(meshName, lineNumber, why, error);
+        Tokenize(line, &tokens);
+        real v[3];
+        if (tokens.empty() || tokens[0] != "v")
+            continue;
+        if (!ReadThree(tokens, v, &why))
+            return MeshFail(meshName, lineNumber, why, error);
+        lo = {std::min(lo.x, v[0]), std::min(lo.y, v[1]), std::min(lo.z, v[2])};
+        hi = {std::max(hi.x, v[0]), std::max(hi.y, v[1]), std::max(hi.z, v[2])};
+    }
+    rewind(file);
+    // (halves first: lo + hi could overflow; the sides' differences may, for a mesh that spans
+    // the range of numbers, which then has no size to fit)
+    vec3 centre = real(0.5) * lo + real(0.5) * hi, side = hi - lo;
+    real longest = std::max({side.x, side.y, side.z});
+    if (!(longest > 0) || !std::isfinite(longest)) {
+        *error = std::string(meshName) + ": fit: the mesh's vertices have no size to fit (" +
+                 (longest > 0 ? "its box spans more than the range of numbers)"
+                              : "they are all one point, or there are none)");
+        return false;
+    }
+    MeshStep move = MeshStep(), scale = MeshStep();
+    move.kind = MESH_TRANSLATE, move.offset = -centre;
+    scale.kind = MESH_SCALE, scale.factor = size / longest;
+    steps->insert(steps->begin(), {move, scale});
+    return true;
+}
+
 bool ReadMeshStatement(const std::vector<std::string> &tokens, const char *sceneFile, int line,
                        int material, size_t maxTriangles, Scene *scene, std::string *error) {
     std::string where = std::string(sceneFile) + ":" + std::to_string(line) + ": mesh: ", why;
-    std::vector<MeshStep> steps;
-    if (!ParseMeshTransform(tokens, 3, &steps, &why)) {
+    MeshWords words;
+    if (!ParseMeshWords(tokens, 3, &words, &why)) {
         *error = where + why;
         return false;
     }
@@ -344,12 +400,15 @@ bool ReadMeshStatement(const std::vector<std::string> &tokens, const char *scene
         *error = where + why;
         return false;
     }
-    bool read =
-        ReadObj(file, path.c_str(), material, steps, maxTriangles,
-                std::string(sceneFile) + ":" + std::to_string(line), &scene->triangles, error);
+    size_t first = scene->triangles.size();
+    bool read = (words.fit == 0 || FitSteps(file, path.c_str(), words.fit, &words.steps, error)) &&
+                ReadObjInto(file, path.c_str(), material, &words, maxTriangles,
+                            std::string(sceneFile) + ":" + std::to_string(line), scene, error);
     fclose(file);
-    if (read &&
-        std::find(scene->meshFiles.begin(), scene->meshFiles.end(), path) == scene->meshFiles.end())
+    if (!read)
+        return false;
+    if (std::find(scene->meshFiles.begin(), scene->meshFiles.end(), path) == scene->meshFiles.end())
         scene->meshFiles.push_back(path);
-    return read;
+    scene->meshes.push_back({path, first, scene->triangles.size() - first});
+    return true;
 }

@@ -174,6 +174,28 @@ std::string OneColourWarning(const Scene *scene) {
     return "";
 }
 
+void PrintMeshes(const Scene *scene) {
+    for (const MeshRange &m : scene->meshes) {
+        vec3 lo = {kInfinity, kInfinity, kInfinity}, hi = -lo;
+        bool smooth = false;
+        for (size_t t = m.first; t < m.first + m.count; t++) {
+            const Triangle *tri = &scene->triangles[t];
+            for (vec3 p : {tri->a, tri->b, tri->c})
+                lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)},
+                hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+            smooth = smooth || (t < scene->cornerNormals.size() &&
+                                MaxComponent(scene->cornerNormals[t].a) > 0);
+        }
+        vec3 size = hi - lo;
+        fprintf(stderr,
+                "mesh %s: %zu triangles%s, box (%.6g %.6g %.6g) to (%.6g %.6g %.6g), size %.6g x "
+                "%.6g x %.6g\n",
+                m.path.c_str(), m.count, smooth ? ", smooth" : "", (double)lo.x, (double)lo.y,
+                (double)lo.z, (double)hi.x, (double)hi.y, (double)hi.z, (double)size.x,
+                (double)size.y, (double)size.z);
+    }
+}
+
 void PrintStats(const RayStats *s, const RenderSettings *settings, int threads,
                 double renderSeconds, double totalSeconds) {
     uint64_t total = s->primary + s->shadow + s->reflection + s->refraction + s->diffuse;

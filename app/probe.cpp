@@ -88,9 +88,14 @@ static std::string Quoted(const std::string &s) {
     return out + "\"";
 }
 
+// A hit as JSON; on a smooth mesh's triangle, the normal that shading uses (SurfaceNormal) beside
+// the geometric one, as "shading_normal".
 static std::string HitJson(const Scene *scene, const RayHit *hit) {
+    std::string shading = HasCornerNormals(scene, hit)
+                              ? ",\"shading_normal\":" + Triple(SurfaceNormal(scene, hit))
+                              : "";
     return "{\"hit\":true,\"t\":" + Number(hit->t) + ",\"point\":" + Triple(hit->point) +
-           ",\"normal\":" + Triple(hit->normal) +
+           ",\"normal\":" + Triple(hit->normal) + shading +
            ",\"front\":" + (hit->frontFace ? "true" : "false") + ",\"shape\":\"" +
            (hit->shape == SHAPE_SPHERE ? "sphere" : "triangle") +
            "\",\"index\":" + std::to_string(hit->index) +

@@ -152,13 +152,59 @@ static vec3 NearAnEdge(const Triangle *tri, const RayHit *hit, vec3 dir) {
     return OffsetRayOrigin(moved, error + least, hit->normal, dir);
 }
 
-vec3 LeavingPoint(const Scene *scene, const RayHit *hit, vec3 dir) {
+// The shadow terminator of a smooth mesh: its flat triangles lie inside the curved surface they
+// stand for, so a ray toward a light just above the smooth horizon, leaving the flat triangle, is
+// stopped by the next triangle over, and the lit side ends in dark, blocky facets. Hanika,
+// "Hacking the shadow terminator" (Ray Tracing Gems II, ch. 4, 2021) moves the ray's origin out
+// to where the curved surface would be: for each corner i, the point's height below the plane
+// through that corner square to its normal n_i, max(0, (p_i - P).n_i), taken along n_i and
+// weighted by the point's barycentric weight. A flat region (all normals alike) or a concave one
+// (the point above those planes) is not moved. The normals are taken on the side `toward` points
+// to. Returns the move; 0 on a flat triangle.
+static vec3 TerminatorShift(const Scene *scene, const RayHit *hit, vec3 toward) {
+    if (!HasCornerNormals(scene, hit))
+        return {0, 0, 0};
+    const Triangle *t = &scene->triangles[hit->index];
+    const CornerNormals *c = &scene->cornerNormals[hit->index];
+    vec3 outward = hit->frontFace ? hit->normal : -hit->normal;
+    real side = Dot(toward, outward) > 0 ? 1 : -1;
+    real w[3];
+    Barycentric(t, hit->point, w);
+    const vec3 corner[3] = {t->a, t->b, t->c}, normal[3] = {c->a, c->b, c->c};
+    vec3 shift = {0, 0, 0};
+    for (int i = 0; i < 3; i++) {
+        vec3 n = side * normal[i];
+        real height = Dot(corner[i] - hit->point, n);
+        if (height > 0)
+            shift = shift + (w[i] * height) * n;
+    }
+    return shift;
+}
+
+// LeavingPoint and ShadowOrigin: the smooth surface's side is `toward`'s.
+static vec3 Leaving(const Scene *scene, const RayHit *hit, vec3 dir, vec3 toward) {
     if (hit->shape != SHAPE_TRIANGLE) // a sphere has no edges
         return OffsetRayOrigin(hit, dir);
     const Triangle *tri = &scene->triangles[hit->index];
+    vec3 shift = TerminatorShift(scene, hit, toward); // robust: off a smooth mesh's terminator
+    if (shift.x != 0 || shift.y != 0 || shift.z != 0) {
+        // Moved off the triangle by the shift, which is far larger than the point's error: the
+        // sum's own rounding, and the shift's (a few roundings of its size), are its error
+        vec3 moved = hit->point + shift;
+        vec3 error = hit->pointError + Gamma(1) * Abs(moved) + Gamma(8) * Abs(shift);
+        return OffsetRayOrigin(moved, error, hit->normal, dir);
+    }
     real resolution;
     if (!FarFromEdges(tri, hit, &resolution))
         return NearAnEdge(tri, hit, dir);
     vec3 least = {resolution, resolution, resolution};
     return OffsetRayOrigin(hit->point, hit->pointError + least, hit->normal, dir);
+}
+
+vec3 LeavingPoint(const Scene *scene, const RayHit *hit, vec3 dir) {
+    return Leaving(scene, hit, dir, dir);
+}
+
+vec3 ShadowOrigin(const Scene *scene, const RayHit *hit, vec3 dir) {
+    return Leaving(scene, hit, dir, hit->normal);
 }

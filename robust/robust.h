@@ -274,6 +274,11 @@ inline vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir) {
 // (leave.cpp). The triangle's corners are the scene's.
 vec3 LeavingPoint(const Scene *scene, const RayHit *hit, vec3 dir);
 
+// LeavingPoint for a shadow ray, whose light may lie behind a smooth mesh's flat triangle while
+// its smooth normal faces it: the origin moves out to the smooth surface on the side the hit was
+// seen from (not the light's), and the ray then finds for itself whether it clears the mesh.
+vec3 ShadowOrigin(const Scene *scene, const RayHit *hit, vec3 dir);
+
 // Whether a ray in direction dir from a point that LeavingPoint moved off triangle hit, to the
 // side `side` points to, goes so plainly away from it that the shape loop may pass over it. The
 // moved origin is on that side of the exact plane, or on it (OffsetRayOrigin's bound, which
@@ -292,7 +297,11 @@ inline bool PassesOver(const RayHit *hit, vec3 side, vec3 dir) {
 }
 
 // Where such a ray starts its search: from t = 0, passing over the triangle it leaves where
-// PassesOver, else over nothing.
-inline SelfHit StartLeaving(const RayHit *hit, vec3 side, vec3 dir) {
-    return PassesOver(hit, side, dir) ? SelfHit{0, SHAPE_TRIANGLE, hit->index} : kNoSelfHit;
+// PassesOver, else over nothing. A smooth mesh's triangle is never passed over: its ray may start
+// off the plane, moved out to the curved surface (LeavingPoint), where the plane's side no longer
+// tells whether it can be met again.
+inline SelfHit StartLeaving(const Scene *scene, const RayHit *hit, vec3 side, vec3 dir) {
+    return PassesOver(hit, side, dir) && !HasCornerNormals(scene, hit)
+               ? SelfHit{0, SHAPE_TRIANGLE, hit->index}
+               : kNoSelfHit;
 }

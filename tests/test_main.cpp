@@ -114,6 +114,7 @@ static const struct {
     {"text", TestText},
     {"mesh", TestMesh},
     {"mesh_rays", TestMeshRays},
+    {"smooth", TestSmooth},
     {"leaks", TestLeaks},
     {"handout", TestHandout},
     {"probes", TestProbes},

@@ -321,8 +321,8 @@ static void TestMeshStatementErrors(const std::string &dir) {
          "material 'quad.obj' is not defined (define it above; a mesh's file name may not "
          "contain spaces)"},
         {"material m\nmaterial quad.obj\nmesh my quad.obj m\n", 3,
-         "unknown transform word 'm' (expected scale, rotate or translate; if the file name has a "
-         "space, that is why: file names may not contain spaces)"},
+         "unknown word 'm' (expected scale, rotate, translate, fit, flat or smooth; if the file "
+         "name has a space, that is why: file names may not contain spaces)"},
     };
     for (const BadObj &b : bad) {
         std::string expected = dir + "/sub/s.scene:" + std::to_string(b.line) + ": ";

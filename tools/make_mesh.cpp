@@ -6,6 +6,9 @@
 //                            triangles (LEVEL 0..9)
 //   make_mesh terrain N      a height field over the square [-1, 1] x [-1, 1] of y = 0: an N x N
 //                            grid of squares, two triangles each, 2 N^2 triangles (N 1..4000)
+//   ... normals              the same, with the true surface's normal at each vertex (`vn`, named
+//                            by every face's corners as v//vn): the sphere's is its position, the
+//                            terrain's comes from the slopes of its height function
 //
 // Vertices are shared (each written once), and every face is wound counter-clockwise seen from
 // outside, so (b - a) x (c - a) points out of the sphere and up from the terrain.
@@ -95,16 +98,35 @@ static void Terrain(int n, std::vector<Point> *vertices, std::vector<Face> *face
         }
 }
 
+// The terrain's unit normal at (x, z): (-dh/dx, 1, -dh/dz), normalised.
+static Point TerrainNormal(Point p) {
+    double dx = 0.45 * std::cos(3 * p.x) * std::cos(2 * p.z) + 0.25 * std::cos(5 * p.x + 7 * p.z) -
+                0.55 * std::sin(11 * p.x - 3 * p.z);
+    double dz = -0.3 * std::sin(3 * p.x) * std::sin(2 * p.z) + 0.35 * std::cos(5 * p.x + 7 * p.z) +
+                0.15 * std::sin(11 * p.x - 3 * p.z);
+    return OnUnitSphere({-dx, 1, -dz});
+}
+
 // OBJ counts vertices from 1. %.9g: nine significant digits, enough for a float to read back
-// exactly, and a third shorter than the 17 a double would need.
+// exactly, and a third shorter than the 17 a double would need. With normals (one a vertex, the
+// same number), each corner is written v//vn.
 static void WriteObj(const char *what, const std::vector<Point> &vertices,
-                     const std::vector<Face> &faces) {
-    printf("# %s: %zu vertices, %zu triangles (rt's tools/make_mesh)\n", what, vertices.size(),
-           faces.size());
+                     const std::vector<Face> &faces, Point (*normal)(Point)) {
+    printf("# %s: %zu vertices, %zu triangles%s (rt's tools/make_mesh)\n", what, vertices.size(),
+           faces.size(), normal ? ", a normal at each vertex" : "");
     for (Point p : vertices)
         printf("v %.9g %.9g %.9g\n", p.x, p.y, p.z);
+    if (normal)
+        for (Point p : vertices) {
+            Point n = normal(p);
+            printf("vn %.9g %.9g %.9g\n", n.x, n.y, n.z);
+        }
     for (Face f : faces)
-        printf("f %d %d %d\n", f.a + 1, f.b + 1, f.c + 1);
+        if (normal)
+            printf("f %d//%d %d//%d %d//%d\n", f.a + 1, f.a + 1, f.b + 1, f.b + 1, f.c + 1,
+                   f.c + 1);
+        else
+            printf("f %d %d %d\n", f.a + 1, f.b + 1, f.c + 1);
 }
 
 // A whole number in [lo, hi], or -1.
@@ -114,23 +136,28 @@ static int Count(const char *text, int lo, int hi) {
     return *text && !*end && value >= lo && value <= hi ? (int)value : -1;
 }
 
+static Point SphereNormal(Point p) { return OnUnitSphere(p); }
+
 int main(int argc, char **argv) {
     std::vector<Point> vertices;
     std::vector<Face> faces;
-    int n = argc == 3 ? Count(argv[2], 0, 9) : -1;
-    if (argc == 3 && !strcmp(argv[1], "sphere") && n >= 0) {
+    bool normals = argc == 4 && !strcmp(argv[3], "normals");
+    bool shape = argc == 3 || normals;
+    int n = shape ? Count(argv[2], 0, 9) : -1;
+    if (shape && !strcmp(argv[1], "sphere") && n >= 0) {
         Icosahedron(&vertices, &faces);
         for (int level = 0; level < n; level++)
             Subdivide(&vertices, &faces);
-        WriteObj("icosphere", vertices, faces);
+        WriteObj("icosphere", vertices, faces, normals ? SphereNormal : nullptr);
         return 0;
     }
-    n = argc == 3 ? Count(argv[2], 1, 4000) : -1;
-    if (argc == 3 && !strcmp(argv[1], "terrain") && n >= 1) {
+    n = shape ? Count(argv[2], 1, 4000) : -1;
+    if (shape && !strcmp(argv[1], "terrain") && n >= 1) {
         Terrain(n, &vertices, &faces);
-        WriteObj("terrain", vertices, faces);
+        WriteObj("terrain", vertices, faces, normals ? TerrainNormal : nullptr);
         return 0;
     }
-    fprintf(stderr, "usage: make_mesh sphere LEVEL (0..9) | make_mesh terrain N (1..4000)\n");
+    fprintf(stderr, "usage: make_mesh sphere LEVEL (0..9) [normals] | make_mesh terrain N "
+                    "(1..4000) [normals]\n");
     return 2;
 }
