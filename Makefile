@@ -132,7 +132,7 @@ fuzz: build/fuzz/fuzz_scene
 
 # The benchmark programs: bench/bench.cpp and report.cpp with the core and the hard-case suite,
 # once in double and once in float.
-BENCH_OBJS = bench/bench bench/report bench/robustness bench/methods bench/layout bench/path bench/peers bench/svg tests/hard_cases tests/hard_cases_offset tests/robust_scenes
+BENCH_OBJS = bench/bench bench/report bench/robustness bench/methods bench/layout bench/path bench/peers bench/terminator bench/svg tests/hard_cases tests/hard_cases_offset tests/robust_scenes
 
 build/double/rtbench: $(call objs,build/double,$(BENCH_OBJS)) $(DOUBLE_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)

@@ -291,12 +291,13 @@ static int TimeProcess(char **command, bool memory) {
     return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : 1;
 }
 
-int ReportMain(const std::string &dir); // report.cpp
-int RobustnessTables();                 // robustness.cpp
-int MethodsTable(const char *folder);   // methods.cpp
-int LayoutTable(const char *folder);    // layout.cpp
-int PathTable(const char *folder);      // path.cpp
-int NoiseMain(char **argv);             // peers.cpp
+int ReportMain(const std::string &dir);                          // report.cpp
+int RobustnessTables();                                          // robustness.cpp
+int MethodsTable(const char *folder);                            // methods.cpp
+int LayoutTable(const char *folder);                             // layout.cpp
+int PathTable(const char *folder);                               // path.cpp
+int NoiseMain(char **argv);                                      // peers.cpp
+int TerminatorTable(const char *folder, char **objs, int count); // terminator.cpp
 
 int main(int argc, char **argv) {
     std::string mode = argc > 1 ? argv[1] : "";
@@ -320,11 +321,13 @@ int main(int argc, char **argv) {
         return PathTable(argv[2]);
     if (mode == "noise" && argc == 8)
         return NoiseMain(argv + 2);
+    if (mode == "terminator" && argc >= 4)
+        return TerminatorTable(argv[2], argv + 3, argc - 3);
     if (mode != "rows" || argc != 3) {
-        fprintf(stderr,
-                "usage: bench rows DIR | bench report DIR | bench pngfloor RGB PNG | "
-                "bench time PROGRAM ARGS... | bench robustness | bench methods [DIR] | "
-                "bench layout DIR | bench path DIR | bench noise IMAGE CURVE N REF CURVE R\n");
+        fprintf(stderr, "usage: bench rows DIR | bench report DIR | bench pngfloor RGB PNG | "
+                        "bench time PROGRAM ARGS... | bench robustness | bench methods [DIR] | "
+                        "bench layout DIR | bench path DIR | bench noise IMAGE CURVE N REF CURVE R "
+                        "| bench terminator DIR OBJ...\n");
         return 2;
     }
     for (const BenchScene &b : kScenes)

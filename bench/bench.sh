@@ -137,6 +137,20 @@ for scene in test test_no_mirrors test_no_lights effects effects_no_glass effect
 done
 echo "bench: effects done" >&2
 
+# The shadow terminator of smooth icospheres of 80 and 320 triangles: the handouts' methods against
+# rt's, in double and float (terminator.md)
+build/make_mesh sphere 1 normals >"$dir/ico80.obj"
+build/make_mesh sphere 2 normals >"$dir/ico320.obj"
+: >"$dir/terminator.md"
+build/double/rtbench terminator "$dir" "$dir/ico80.obj" "$dir/ico320.obj"
+build/float/rtbench terminator "$dir" "$dir/ico80.obj" "$dir/ico320.obj"
+{
+echo
+echo "## Smooth meshes: the shadow terminator"
+cat "$dir/terminator.md"
+} >>"$report"
+echo "bench: terminator done" >&2
+
 # Where the robustness claims hold, and what each numerical method costs and buys
 {
     build/double/rtbench robustness
