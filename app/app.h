@@ -132,10 +132,11 @@ bool ParseWholeNumber(const std::string &token, int lo, int hi, int *value, std:
 // ---- mesh.cpp: Wavefront OBJ meshes (docs/scene-format.md) --------------------------------------
 
 // One transform word of a `mesh` statement; the words move every vertex in the order written.
-enum MeshStepKind { MESH_SCALE, MESH_ROTATE, MESH_TRANSLATE };
+enum MeshStepKind { MESH_SCALE, MESH_SCALE_AXES, MESH_ROTATE, MESH_TRANSLATE };
 struct MeshStep {
     MeshStepKind kind;
     real factor;       // MESH_SCALE: the uniform factor, > 0
+    vec3 factors;      // MESH_SCALE_AXES: a factor for each axis, none 0; a negative one mirrors
     int axis;          // MESH_ROTATE: 0, 1, 2 for x, y, z
     real cosine, sine; // MESH_ROTATE: of the angle (exactly 0 and +-1 for multiples of 90)
     vec3 offset;       // MESH_TRANSLATE
@@ -152,9 +153,9 @@ struct MeshWords {
     real fit; // `fit S` (> 0): scaled and centred so that its longest side is S, first; 0: none
 };
 
-// Reads the words tokens[first..]: the transform words `scale S`, `rotate x|y|z DEGREES`,
-// `translate X Y Z`, any number of each, and `flat`, `smooth`, `fit S`, each at most once.
-// Returns false with *error for an unknown word or a bad value.
+// Reads the words tokens[first..]: the transform words `scale S`, `scale X Y Z`, `rotate x|y|z
+// DEGREES`, `translate X Y Z`, any number of each, and `flat`, `smooth`, `fit S`, each at most
+// once. Returns false with *error for an unknown word or a bad value.
 bool ParseMeshWords(const std::vector<std::string> &tokens, size_t first, MeshWords *words,
                     std::string *error);
 
@@ -166,8 +167,13 @@ bool ParseMeshTransform(const std::vector<std::string> &tokens, size_t first,
 vec3 TransformVertex(const std::vector<MeshStep> &steps, vec3 p);
 
 // A normal n turned by the steps: the inverse transpose of each step, which for a uniform scale
-// and a translation is nothing and for a rotation is the rotation; made unit length.
+// and a translation is nothing, for a rotation the rotation, and for `scale X Y Z` a division by
+// each factor; made unit length.
 vec3 TransformNormal(const std::vector<MeshStep> &steps, vec3 n);
+
+// Whether the steps mirror the mesh (an odd number of negative factors): its faces' winding is then
+// turned back, so that their outward side stays outward.
+bool MirrorsMesh(const std::vector<MeshStep> &steps);
 
 // Reads a Wavefront OBJ file, open as `file` and called meshName in messages: every face as
 // triangles of `material` (a fan from its first corner), its vertices moved by `steps`,

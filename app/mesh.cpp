@@ -39,6 +39,7 @@ struct MeshReading {
     std::vector<int> cornerVertex, cornerNormal; // 3 a triangle
     bool keepCorners;
     bool fileNormals; // the file's `vn` are read (else skipped, as are the corners' vn indices)
+    bool mirrored;    // the transform words mirror the mesh: each face's winding is turned back
     int line;         // the line being read
     int badNormal;    // the first line with a normal index out of range (its face is flat); 0
     std::string badIndex;
@@ -167,10 +168,12 @@ static bool ReadFace(const std::vector<std::string> &tokens, MeshReading *r, int
         if (!ReadCorner(tokens[k], r, hint, &next, &nextN, error))
             return false;
         const std::vector<vec3> &v = r->vertices;
-        triangles->push_back({v[first], v[previous], v[next], material});
+        size_t b = r->mirrored ? next : previous, c = r->mirrored ? previous : next;
+        int bN = r->mirrored ? nextN : previousN, cN = r->mirrored ? previousN : nextN;
+        triangles->push_back({v[first], v[b], v[c], material});
         if (r->keepCorners) {
-            r->cornerVertex.insert(r->cornerVertex.end(), {(int)first, (int)previous, (int)next});
-            r->cornerNormal.insert(r->cornerNormal.end(), {firstN, previousN, nextN});
+            r->cornerVertex.insert(r->cornerVertex.end(), {(int)first, (int)b, (int)c});
+            r->cornerNormal.insert(r->cornerNormal.end(), {firstN, bN, cN});
         }
         previous = next, previousN = nextN;
     }
@@ -235,7 +238,7 @@ bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<M
              size_t maxTriangles, const std::string &statement, std::vector<Triangle> *triangles,
              std::string *error) {
     MeshReading r;
-    r.keepCorners = r.fileNormals = false, r.badNormal = 0;
+    r.keepCorners = r.fileNormals = false, r.badNormal = 0, r.mirrored = MirrorsMesh(steps);
     return ReadLines(file, meshName, material, steps, false, maxTriangles, statement, &r, triangles,
                      error);
 }
@@ -301,6 +304,7 @@ bool ReadObjInto(FILE *file, const char *meshName, int material, const MeshWords
     MeshReading r;
     r.keepCorners = words->normals != MESH_FLAT;
     r.fileNormals = words->normals == MESH_NORMALS_FROM_FILE, r.badNormal = 0;
+    r.mirrored = MirrorsMesh(words->steps);
     size_t first = scene->triangles.size();
     if (!ReadLines(file, meshName, material, words->steps, r.fileNormals, maxTriangles, statement,
                    &r, &scene->triangles, error))

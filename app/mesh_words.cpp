@@ -3,6 +3,7 @@
 // `smooth` and `fit S` (docs/scene-format.md). The OBJ file itself is read by mesh.cpp.
 #include "app.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -33,8 +34,16 @@ static bool MakeMeshStep(const std::string &word, const std::string &axis, const
         step->kind = MESH_SCALE;
         step->factor = v[0];
         if (!(v[0] > 0)) // 0 would flatten the mesh, < 0 would turn it inside out
-            *error = "scale must be > 0";
+            *error = "scale must be > 0 (scale -1 1 1 mirrors in x)";
         return v[0] > 0;
+    }
+    if (word == "scale3") {
+        step->kind = MESH_SCALE_AXES;
+        step->factors = {v[0], v[1], v[2]};
+        bool some = v[0] != 0 && v[1] != 0 && v[2] != 0; // (0 would flatten the mesh)
+        if (!some)
+            *error = "scale X Y Z: no factor may be 0";
+        return some;
     }
     if (word == "translate") {
         step->kind = MESH_TRANSLATE;
@@ -52,8 +61,17 @@ static bool MakeMeshStep(const std::string &word, const std::string &axis, const
 // One word and its values, tokens[*k..]; moves *k past them.
 static bool ParseMeshStep(const std::vector<std::string> &tokens, size_t *k, MeshStep *step,
                           std::string *error) {
-    const std::string &word = tokens[*k];
-    size_t count = word == "scale" ? 1 : word == "rotate" ? 2 : word == "translate" ? 3 : 0;
+    std::string word = tokens[*k];
+    real unused;
+    std::string ignored;
+    if (word == "scale" && *k + 3 < tokens.size() && ParseReal(tokens[*k + 2], &unused, &ignored) &&
+        ParseReal(tokens[*k + 3], &unused, &ignored))
+        word = "scale3"; // `scale X Y Z`: three numbers follow
+    size_t count = word == "scale"       ? 1
+                   : word == "rotate"    ? 2
+                   : word == "translate" ? 3
+                   : word == "scale3"    ? 3
+                                         : 0;
     if (count == 0) {
         *error = "unknown word " + Shown(word) +
                  " (expected scale, rotate, translate, fit, flat or smooth; if the file name has "
@@ -61,7 +79,7 @@ static bool ParseMeshStep(const std::vector<std::string> &tokens, size_t *k, Mes
         return false;
     }
     if (*k + count >= tokens.size()) {
-        *error = word + ": expected " +
+        *error = tokens[*k] + ": expected " +
                  (count == 1   ? "a factor (scale 2 doubles the mesh)"
                   : count == 2 ? "an axis and an angle in degrees (rotate y 30)"
                                : "three numbers X Y Z (translate 0 -1 -5)");
@@ -71,7 +89,7 @@ static bool ParseMeshStep(const std::vector<std::string> &tokens, size_t *k, Mes
     size_t firstNumber = word == "rotate" ? 2 : 1; // rotate's first value is its axis
     for (size_t j = firstNumber; j <= count; j++) {
         if (!ParseReal(tokens[*k + j], &v[j - firstNumber], error)) {
-            *error = word + ": " + *error;
+            *error = tokens[*k] + ": " + *error;
             return false;
         }
     }
@@ -80,6 +98,8 @@ static bool ParseMeshStep(const std::vector<std::string> &tokens, size_t *k, Mes
     *k += 1 + count;
     return true;
 }
+
+static real MinAbs(vec3 v) { return std::min({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}); }
 
 // `flat`, `smooth` or `fit S` at tokens[*k]; moves *k past it. False with *error where the word is
 // given twice, flat and smooth both, or fit's size is not a positive number.
@@ -126,6 +146,8 @@ bool ParseMeshWords(const std::vector<std::string> &tokens, size_t first, MeshWo
             return false;
         words->steps.push_back(step);
         size = step.kind == MESH_SCALE ? step.factor * size : size;
+        if (step.kind == MESH_SCALE_AXES) // (its smallest factor shrinks the most)
+            size = MinAbs(step.factors) * size;
     }
     // Scale words that together shrink a mesh below the normal numbers would round its
     // vertices toward 0 and make it vanish without a word (a mesh grown beyond the range of
@@ -157,6 +179,8 @@ vec3 TransformVertex(const std::vector<MeshStep> &steps, vec3 p) {
     for (const MeshStep &step : steps) {
         if (step.kind == MESH_SCALE) {
             p = step.factor * p;
+        } else if (step.kind == MESH_SCALE_AXES) {
+            p = {step.factors.x * p.x, step.factors.y * p.y, step.factors.z * p.z};
         } else if (step.kind == MESH_TRANSLATE) {
             p = p + step.offset;
         } else {
@@ -175,6 +199,8 @@ vec3 TransformVertex(const std::vector<MeshStep> &steps, vec3 p) {
 
 vec3 TransformNormal(const std::vector<MeshStep> &steps, vec3 n) {
     for (const MeshStep &step : steps) {
+        if (step.kind == MESH_SCALE_AXES) // the inverse transpose of diag(X, Y, Z)
+            n = {n.x / step.factors.x, n.y / step.factors.y, n.z / step.factors.z};
         if (step.kind != MESH_ROTATE)
             continue; // (a uniform scale or a move leaves a direction square to the surface)
         real c[3] = {n.x, n.y, n.z};
@@ -185,4 +211,12 @@ vec3 TransformNormal(const std::vector<MeshStep> &steps, vec3 n) {
         n = {c[0], c[1], c[2]};
     }
     return SafeNormalize(n);
+}
+
+bool MirrorsMesh(const std::vector<MeshStep> &steps) {
+    bool mirrored = false;
+    for (const MeshStep &step : steps)
+        if (step.kind == MESH_SCALE_AXES)
+            mirrored ^= (step.factors.x < 0) ^ (step.factors.y < 0) ^ (step.factors.z < 0);
+    return mirrored;
 }

@@ -77,9 +77,9 @@ static void TestInterpolation(const std::string &dir) {
 }
 
 // The transform words turn normals as the surface turns: a normal stays square to the edges of
-// its triangle, which is here the sphere-like triangle's face normal given at all three corners.
-// And a flipped winding (the file's faces wound the other way) flips the corner normals with the
-// triangle's outward side.
+// its triangle, which is here the triangle's face normal given at all three corners, after
+// rotations, a uniform scale, a stretch and a mirror. And a flipped winding (the file's faces
+// wound the other way) flips the corner normals with the triangle's outward side.
 static void TestTransformedNormals(const std::string &dir) {
     const char *faceNormal = "v 0 0 0\nv 2 0 1\nv 0 3 -1\nvn -3 2 6\nf 1//1 2//1 3//1\n";
     Scene scene;
@@ -101,6 +101,19 @@ static void TestTransformedNormals(const std::string &dir) {
               std::to_string((double)Dot(n, e1)) +
               ", n.e2 = " + std::to_string((double)Dot(n, e2)) + ")");
     CHECK(Dot(n, Cross(t->b - t->a, t->c - t->a)) > 0, "and on the triangle's outward side");
+    Scene stretched;
+    read = LoadScene(dir, faceNormal, "material m\nmesh m.obj m scale 1 -2 3 rotate z 20\n",
+                     &stretched, &error);
+    const Triangle *s = read && stretched.cornerNormals.size() == 1 ? &stretched.triangles[0] : t;
+    vec3 m = read && stretched.cornerNormals.size() == 1 ? stretched.cornerNormals[0].a : n;
+    vec3 outward = Cross(s->b - s->a, s->c - s->a);
+    CHECK(read && stretched.cornerNormals.size() == 1 &&
+              std::fabs(Dot(m, Normalize(s->b - s->a))) < 1e-5 &&
+              std::fabs(Dot(m, Normalize(s->c - s->a))) < 1e-5 && Dot(m, outward) > 0,
+          "scale 1 -2 3 (stretched and mirrored in y), rotate z 20: the normal, by the inverse "
+          "transpose, square to the edges; the mirror turns the winding back, so it stays on the "
+          "outward side (" +
+              Show(m) + ")" + error);
     Scene flipped;
     read = LoadScene(dir, "v 0 0 0\nv 2 0 1\nv 0 3 -1\nvn -3 2 6\nf 1//1 3//1 2//1\n",
                      "material m\nmesh m.obj m\n", &flipped, &error);
