@@ -43,6 +43,8 @@ struct MeshReading {
     int line;         // the line being read
     int badNormal;    // the first line with a normal index out of range (its face is flat); 0
     std::string badIndex;
+    int badVn; // the first `vn` line that is not three numbers (its normal is 0); 0
+    std::string badVnWhy;
 };
 
 // The three numbers of `v x y z [w]` or `vn x y z`. Further numbers (w, or the vertex colour
@@ -70,8 +72,16 @@ static bool ReadThree(const std::vector<std::string> &tokens, real v[3], std::st
 static bool ReadVertex(const std::vector<std::string> &tokens, const std::vector<MeshStep> &steps,
                        const std::string &statement, MeshReading *r, std::string *error) {
     real v[3];
-    if (!ReadThree(tokens, v, error))
-        return false;
+    if (!ReadThree(tokens, v, error)) {
+        if (tokens[0] == "v")
+            return false;
+        // (A bad normal is no reason to refuse a mesh that draws without it: the faces that
+        // name it are flat, and the reader warns once)
+        if (r->badVn == 0)
+            r->badVn = r->line, r->badVnWhy = *error;
+        r->normals.push_back({0, 0, 0});
+        return true;
+    }
     std::vector<vec3> *list = tokens[0] == "v" ? &r->vertices : &r->normals;
     if (list->size() >= kMaxMeshVertices) {
         *error = "too many vertices (rt's limit is " + std::to_string(kMaxMeshVertices) + ")";
@@ -238,7 +248,8 @@ bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<M
              size_t maxTriangles, const std::string &statement, std::vector<Triangle> *triangles,
              std::string *error) {
     MeshReading r;
-    r.keepCorners = r.fileNormals = false, r.badNormal = 0, r.mirrored = MirrorsMesh(steps);
+    r.keepCorners = r.fileNormals = false, r.badNormal = r.badVn = 0;
+    r.mirrored = MirrorsMesh(steps);
     return ReadLines(file, meshName, material, steps, false, maxTriangles, statement, &r, triangles,
                      error);
 }
@@ -303,7 +314,7 @@ bool ReadObjInto(FILE *file, const char *meshName, int material, const MeshWords
                  std::string *error) {
     MeshReading r;
     r.keepCorners = words->normals != MESH_FLAT;
-    r.fileNormals = words->normals == MESH_NORMALS_FROM_FILE, r.badNormal = 0;
+    r.fileNormals = words->normals == MESH_NORMALS_FROM_FILE, r.badNormal = r.badVn = 0;
     r.mirrored = MirrorsMesh(words->steps);
     size_t first = scene->triangles.size();
     if (!ReadLines(file, meshName, material, words->steps, r.fileNormals, maxTriangles, statement,
@@ -317,6 +328,10 @@ bool ReadObjInto(FILE *file, const char *meshName, int material, const MeshWords
                                   std::to_string(r.normals.size()) +
                                   " normals, vn, in the file); faces that name a normal that is "
                                   "not there are drawn flat");
+    if (r.badVn > 0)
+        scene->warnings.push_back(std::string(meshName) + ":" + std::to_string(r.badVn) +
+                                  ": warning: " + r.badVnWhy +
+                                  "; the faces that name this normal are drawn flat");
     return true;
 }
 

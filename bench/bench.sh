@@ -142,8 +142,8 @@ echo "bench: effects done" >&2
 build/make_mesh sphere 1 normals >"$dir/ico80.obj"
 build/make_mesh sphere 2 normals >"$dir/ico320.obj"
 : >"$dir/terminator.md"
-build/double/rtbench terminator "$dir" "$dir/ico80.obj" "$dir/ico320.obj"
-build/float/rtbench terminator "$dir" "$dir/ico80.obj" "$dir/ico320.obj"
+build/double/rtbench terminator "$dir" ico80.obj ico320.obj
+build/float/rtbench terminator "$dir" ico80.obj ico320.obj
 {
 echo
 echo "## Smooth meshes: the shadow terminator"

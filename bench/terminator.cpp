@@ -1,7 +1,8 @@
 // bench/terminator.cpp -- the shadow terminator of a smooth low-polygon sphere, and what handling
 // it costs (`rtbench terminator DIR OBJ...`, part of `make bench`).
 //
-// Each OBJ (an icosphere with its vertex normals, from tools/make_mesh) is lit from nearly behind
+// Each OBJ (an icosphere with its vertex normals, from tools/make_mesh; its path relative to DIR,
+// where the scenes are written) is lit from nearly behind
 // its silhouette and drawn at 256 x 256 under `shading floor` three ways, beside the true sphere:
 // with the handouts' methods (the shadow ray leaves the flat triangle; the plain loop), with rt's
 // but the shadow ray leaving the flat triangle as the handouts' do (`--self-hit skip`: the same

@@ -74,6 +74,20 @@ static void TestInterpolation(const std::string &dir) {
     Scene flat;
     read = LoadScene(dir, kLeaning, "material m\nmesh m.obj m flat\n", &flat, &error);
     CHECK(read && flat.cornerNormals.empty(), "`flat`: the file's vn are not used");
+    // A file whose normals are broken still loads, every triangle of it: the faces that name a
+    // normal that is not there, or not three numbers, are flat, and the reader warns once each
+    Scene broken;
+    read = LoadScene(dir,
+                     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0\nvn 0 0 1\n"
+                     "f 1//1 2//1 3//1\nf 2//2 4//2 3//9\nf 1//2 2//2 3//2\n",
+                     "material m\nmesh m.obj m\n", &broken, &error);
+    bool flatOnes =
+        read && broken.cornerNormals.size() == 3 && MaxComponent(broken.cornerNormals[0].a) == 0 &&
+        MaxComponent(broken.cornerNormals[1].a) == 0 && MaxComponent(broken.cornerNormals[2].a) > 0;
+    CHECK(read && broken.triangles.size() == 3 && flatOnes && broken.warnings.size() == 2,
+          "a vn of two numbers and a normal index out of range: all 3 triangles, the two faces "
+          "flat, the third smooth, two warnings: " +
+              error + (broken.warnings.empty() ? "" : broken.warnings[0]));
 }
 
 // The transform words turn normals as the surface turns: a normal stays square to the edges of
