@@ -172,6 +172,17 @@ bool ParseMeshTransform(const std::vector<std::string> &tokens, size_t first,
     return true;
 }
 
+// A rotate step: counter-clockwise seen from the positive axis, the axes u, w after it (y, z for
+// x; z, x for y; x, y for z) turn as u' = cos u - sin w, w' = sin u + cos w.
+static vec3 Rotate(const MeshStep *step, vec3 p) {
+    real c[3] = {p.x, p.y, p.z};
+    int u = (step->axis + 1) % 3, w = (step->axis + 2) % 3;
+    real cu = c[u], cw = c[w];
+    c[u] = step->cosine * cu - step->sine * cw;
+    c[w] = step->sine * cu + step->cosine * cw;
+    return {c[0], c[1], c[2]};
+}
+
 // Each step is applied as written, not folded into one matrix first: the arithmetic on a vertex
 // is exactly what the words say (one rounding per operation), so a rotation by 90 degrees only
 // swaps and negates coordinates, and `scale 2` only doubles them, both without rounding.
@@ -184,14 +195,7 @@ vec3 TransformVertex(const std::vector<MeshStep> &steps, vec3 p) {
         } else if (step.kind == MESH_TRANSLATE) {
             p = p + step.offset;
         } else {
-            // Counter-clockwise seen from the positive axis: the axes u, w after it (y, z for
-            // x; z, x for y; x, y for z) turn as u' = cos u - sin w, w' = sin u + cos w
-            real c[3] = {p.x, p.y, p.z};
-            int u = (step.axis + 1) % 3, w = (step.axis + 2) % 3;
-            real cu = c[u], cw = c[w];
-            c[u] = step.cosine * cu - step.sine * cw;
-            c[w] = step.sine * cu + step.cosine * cw;
-            p = {c[0], c[1], c[2]};
+            p = Rotate(&step, p);
         }
     }
     return p;
@@ -201,14 +205,8 @@ vec3 TransformNormal(const std::vector<MeshStep> &steps, vec3 n) {
     for (const MeshStep &step : steps) {
         if (step.kind == MESH_SCALE_AXES) // the inverse transpose of diag(X, Y, Z)
             n = {n.x / step.factors.x, n.y / step.factors.y, n.z / step.factors.z};
-        if (step.kind != MESH_ROTATE)
-            continue; // (a uniform scale or a move leaves a direction square to the surface)
-        real c[3] = {n.x, n.y, n.z};
-        int u = (step.axis + 1) % 3, w = (step.axis + 2) % 3;
-        real cu = c[u], cw = c[w];
-        c[u] = step.cosine * cu - step.sine * cw;
-        c[w] = step.sine * cu + step.cosine * cw;
-        n = {c[0], c[1], c[2]};
+        if (step.kind == MESH_ROTATE) // (a uniform scale or a move leaves a normal as it is)
+            n = Rotate(&step, n);
     }
     return SafeNormalize(n);
 }
