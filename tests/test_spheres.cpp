@@ -171,7 +171,7 @@ static void TestTreeHardCases() {
     for (int k = 0; k < 2000; k++)
         copies.spheres.push_back(one);
     copies.spheres.push_back({{1, 1, 1}, kInfinity, 0});
-    copies.spheres.push_back({{1, 1, 1}, std::nan(""), 0});
+    copies.spheres.push_back({{1, 1, 1}, real(std::nan("")), 0});
     copies.spheres.push_back({{kInfinity, 0, 0}, 1, 0});
     SpherePair p;
     MakePair(copies, LAYOUT_BVH, &p);
