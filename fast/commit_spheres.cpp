@@ -64,6 +64,22 @@ static int SphereItems(const std::vector<Sphere> &spheres, BuildItem *items, Nod
     return n;
 }
 
+// One block: the spheres at places index[0..n) lane by lane; an empty lane repeats lane 0's
+// sphere (finite numbers, so it computes nothing unusual), with index -1, and is left out of
+// `filled`.
+static void FillSphereBlock(const std::vector<Sphere> &spheres, const int *index, int n,
+                            SphereBlock *block) {
+    block->filled = 0;
+    for (int lane = 0; lane < kLanes; lane++) {
+        const Sphere *s = &spheres[index[lane < n ? lane : 0]];
+        for (int axis = 0; axis < 3; axis++)
+            block->center[axis][lane] = Component(s->center, axis);
+        block->r2[lane] = s->radius * s->radius; // (as LineMissesSphere rounds it)
+        block->index[lane] = lane < n ? index[lane] : -1;
+        block->filled |= (unsigned)(lane < n) << lane;
+    }
+}
+
 // The spheres of items[begin, end) as blocks appended to the layout, in scene order (so that a
 // leaf tests them as the plain loop would). Returns the first block.
 static int AppendSphereLeaf(const std::vector<Sphere> &spheres, BuildItem *items, int begin,
@@ -72,19 +88,11 @@ static int AppendSphereLeaf(const std::vector<Sphere> &spheres, BuildItem *items
               [](const BuildItem &x, const BuildItem &y) { return x.index < y.index; });
     int first = (int)layout->sphereBlocks.size();
     for (int at = begin; at < end; at += kLanes) {
+        int index[kLanes], n = std::min(kLanes, end - at);
+        for (int lane = 0; lane < n; lane++)
+            index[lane] = items[at + lane].index;
         layout->sphereBlocks.emplace_back();
-        SphereBlock *block = &layout->sphereBlocks.back();
-        block->filled = 0;
-        for (int lane = 0; lane < kLanes; lane++) {
-            bool filled = at + lane < end;
-            int index = items[filled ? at + lane : at].index;
-            const Sphere *s = &spheres[index];
-            for (int axis = 0; axis < 3; axis++)
-                block->center[axis][lane] = Component(s->center, axis);
-            block->r2[lane] = s->radius * s->radius; // (as LineMissesSphere rounds it)
-            block->index[lane] = filled ? index : -1;
-            block->filled |= (unsigned)filled << lane;
-        }
+        FillSphereBlock(spheres, index, n, &layout->sphereBlocks.back());
     }
     return first;
 }
@@ -164,23 +172,15 @@ static bool BuildSphereTree(const std::vector<Sphere> &spheres, SceneLayout *lay
     return true;
 }
 
-// The spheres, kLanes to a block in scene order, for the kernel's first sphere step. An empty
-// lane repeats the block's first sphere (finite numbers, so it computes nothing unusual) and is
-// left out of `filled`.
+// The spheres, kLanes to a block in scene order, for the kernel's first sphere step.
 static void SphereBlocks(const std::vector<Sphere> &spheres, SceneLayout *layout) {
     int n = (int)spheres.size();
     layout->sphereBlocks.resize(Blocks(n));
     for (int first = 0; first < n; first += kLanes) {
-        SphereBlock *block = &layout->sphereBlocks[first / kLanes];
-        block->filled = 0;
-        for (int lane = 0; lane < kLanes; lane++) {
-            const Sphere *s = &spheres[first + lane < n ? first + lane : first];
-            for (int axis = 0; axis < 3; axis++)
-                block->center[axis][lane] = Component(s->center, axis);
-            block->r2[lane] = s->radius * s->radius; // (as LineMissesSphere rounds it)
-            block->index[lane] = first + lane < n ? first + lane : -1;
-            block->filled |= (unsigned)(first + lane < n) << lane;
-        }
+        int index[kLanes], count = std::min(kLanes, n - first);
+        for (int lane = 0; lane < count; lane++)
+            index[lane] = first + lane;
+        FillSphereBlock(spheres, index, count, &layout->sphereBlocks[first / kLanes]);
     }
 }
 
