@@ -226,9 +226,7 @@ static int Collapse(Builder *b, NodeRef top, int *next, SceneLayout *layout) {
         if (k >= count)
             continue;
         const BinaryNode *kid = At(b, kids[k]);
-        for (int axis = 0; axis < 3; axis++)
-            node.lo[axis][k] = kid->box.lo[axis], node.hi[axis][k] = kid->box.hi[axis];
-        node.size[k] = kid->box.size;
+        SetChildBox(&node, k, &kid->box);
         node.blocks[k] = Blocks(kid->count);
         if (kid->count > 0)
             node.child[k] = *next, *next += Blocks(kid->count);

@@ -146,9 +146,7 @@ static int BuildSphereNode(const std::vector<Sphere> &spheres, BuildItem *items,
         Box box;
         real half;
         BoundsBox(&kids[k].bounds.box, &box, &half);
-        for (int axis = 0; axis < 3; axis++)
-            node.lo[axis][k] = box.lo[axis], node.hi[axis][k] = box.hi[axis];
-        node.size[k] = box.size;
+        SetChildBox(&node, k, &box);
         bool leaf = kids[k].leaf || kids[k].end - kids[k].begin <= kLanes || count == 1;
         if (leaf) {
             node.blocks[k] = Blocks(kids[k].end - kids[k].begin);

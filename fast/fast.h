@@ -47,6 +47,13 @@ struct BvhNode {
     int blocks[kChildren]; // a leaf child's blocks; 0: an inner child; -1: missing
 };
 
+// Child k of a node given its box (both trees' builds).
+inline void SetChildBox(BvhNode *node, int k, const Box *box) {
+    for (int axis = 0; axis < 3; axis++)
+        node->lo[axis][k] = box->lo[axis], node->hi[axis][k] = box->hi[axis];
+    node->size[k] = box->size;
+}
+
 // What CommitScene builds: what pays for the scene's size, the blocks alone (a list), a BVH, or
 // nothing (`--layout plain`: no accelerator, the plain loop answers every search).
 enum LayoutChoice { LAYOUT_AUTO, LAYOUT_LIST, LAYOUT_BVH, LAYOUT_PLAIN };
