@@ -15,7 +15,7 @@
 //                                  *Plane)
 //   TraceRay                       the chain of rays: lighting, shadows,     shade.cpp
 //                                  mirrors, glass, at most `depth` rays
-//   Reflect, Refract               the mirror direction; Snell's law         render.h, shade.cpp
+//   Reflect, Refract               the mirror direction; Snell's law         shade.cpp
 //   TracePath                      light that bounces (the journal)          path.cpp
 // The rest is rt's own: settings, sampling, the robust steps beyond the handouts, and the seam.
 // Beside this core, by role: robust/ (the robust triangle test and the rescaling of rays, called

@@ -204,11 +204,7 @@ int RecordRay(RayKind kind, const Ray *ray, TraceLog *log);
 void CloseRay(TraceLog *log, int node, bool found, const RayHit *hit, color light);
 
 // The mirror direction of d about the unit normal n: r = d - 2 (d.n) n (the assignment handout)
-inline vec3 Reflect(vec3 d, vec3 n) {
-    // starter: begin reflect
-    return d - (2 * Dot(d, n)) * n;
-    // starter: end
-}
+vec3 Reflect(vec3 d, vec3 n);
 
 // Snell's law for unit d against the unit normal n (d.n <= 0), eta = n1 / n2. Writes the unit
 // refracted direction to *t and returns true, or returns false for total internal reflection.

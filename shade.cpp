@@ -133,6 +133,13 @@ static color PhongColor(const Shading *sh, const Surface *s) {
     // starter: end
 }
 
+// The assignment handout's mirror direction of d about the unit normal n: r = d - 2 (d.n) n.
+vec3 Reflect(vec3 d, vec3 n) {
+    // starter: begin reflect
+    return d - (2 * Dot(d, n)) * n;
+    // starter: end
+}
+
 // cos(t), the cosine of the refracted angle, for cos(i) and eta = n1 / n2; false under total
 // internal reflection. Snell's law gives cos^2(t) = 1 - eta^2 (1 - cos^2(i)); written that way it
 // cancels at grazing incidence (cos(i) near 0), where 1 - cos^2(i) rounds to 1: glass of index 1
