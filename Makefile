@@ -82,9 +82,9 @@ build/double/run_tests: $(call objs,build/double/tests,$(PER_BUILD_TESTS)) $(SHA
 build/float/run_tests: $(call objs,build/float/tests,$(PER_BUILD_TESTS)) $(SHARED_TEST_OBJS) $(FLOAT_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
-test: all build/double/run_tests build/float/run_tests build/tiny
+test: all build/double/run_tests build/float/run_tests build/tiny build/grader build/grade-set $(REFERENCES)
 	@CXX="$(CXX)" sh tests/run.sh build/double/run_tests build/float/run_tests tests/recipe.sh \
-	    tests/grade.sh tests/starter.sh
+	    tests/grade.sh tests/starter.sh tests/class.sh
 
 check: test
 
@@ -157,19 +157,35 @@ bench: ray ray_float build/double/rtbench build/float/rtbench build/student buil
 # The student kit: build/starter/rt-starter and build/starter/rt-starter.tar.gz, rt's teaching core
 # with the functions tools/starter/stubs.list names as stubs, and without robust/ and fast/
 # (tools/starter.sh).
-starter:
+REFERENCES = $(addprefix build/references/,$(addsuffix .png,$(notdir $(basename $(wildcard scenes/*.scene)))))
+build/references/%.png: scenes/%.scene ray
+	@mkdir -p $(@D)
+	./ray $< --methods handout -o $@ >/dev/null
+
+starter: ray build/tiny build/grade-set $(REFERENCES)
 	@sh tools/starter.sh build/starter
 
-# The grader: `make grade TRACER=PROGRAM` runs PROGRAM on each grading scene (scenes/grade/) and
-# compares its images with rt's; `make grade IMAGES=DIR` grades a folder of images. build/tiny is
-# a tiny tracer with a bug on demand (tests/grade/tiny.cpp): the grader names a failing scene's
-# bug by the one whose image it matches.
+# The grader (tools/grade/, docs/teaching.md): build/grade-set writes a reference set (rt's images
+# of the grading scenes, and those of build/tiny, a tiny tracer with a bug on demand:
+# tests/grade/tiny.cpp); build/grader grades a tracer, a folder of images, or a class against it.
+# `make grade TRACER=PROGRAM | IMAGES=DIR | CLASS=DIR [SEED=N] [TIME=S]` (tools/grade.sh).
+GRADE_LIB = tools/grade/run tools/grade/judge tools/grade/grade tools/grade/report \
+            tools/grade/build tools/grade/set_read
 build/tiny: tests/grade/tiny.cpp build/config
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) -std=c++17 -Wall -Wextra -ffp-contract=off -o $@ $< $(PNG_CFLAGS) $(PNG_LIBS)
 
-grade: ray build/tiny
-	@sh tools/grade.sh $(if $(IMAGES),--images "$(IMAGES)","$(TRACER)")
+build/grader: $(call objs,build/double,tools/grade/main $(GRADE_LIB)) $(DOUBLE_CORE)
+	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
+
+build/grade-set: $(call objs,build/double,tools/grade/set tools/grade/scenes $(GRADE_LIB)) $(DOUBLE_CORE)
+	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
+
+# How the grader compiles a class's submissions: the kit's flags (warnings are the student's).
+KIT_CXXFLAGS = -O2 -std=c++17 -w -ffp-contract=off -fno-math-errno -pthread $(PNG_CFLAGS)
+
+grade: ray build/tiny build/grader build/grade-set
+	@CXX="$(CXX)" KIT_CXXFLAGS="$(KIT_CXXFLAGS)" PNG_LIBS="$(PNG_LIBS)" sh tools/grade.sh
 
 # The mesh generator (tools/make_mesh.cpp), for trying the `mesh` statement on large models:
 # `make build/make_mesh`. Not part of `make`: rt does not need it.
@@ -190,4 +206,4 @@ clean:
 
 .PHONY: all test check check-core starter grade sanitize fuzz bench bench-publish clean
 
--include $(wildcard build/*/*.d build/*/*/*.d)
+-include $(wildcard build/*/*.d build/*/*/*.d build/*/*/*/*.d)

@@ -55,6 +55,21 @@ build "$solved"
 check $? "rt's bodies in the kit build with no warning: $(grep "warning:" "$solved/build.log" | head -3)"
 out=$(kitmake "$solved" test 2>&1)
 check $? "rt's bodies pass every check of the kit: $(printf '%s\n' "$out" | grep -v "^== " | tail -5)"
+out=$(kitmake "$solved" grade 2>&1)
+check $? "a solved kit passes make grade in the kit: $(printf '%s\n' "$out" | grep -v "^pass" | tail -3)"
+flow=$solved/.github/workflows/classroom.yml
+for scene in $(sed 's/ .*//' "$solved/grade/set/scenes.txt"); do
+    grep -q "command: make grade SCENE=$scene\$" "$flow"
+    check $? "the kit's GitHub Classroom workflow grades $scene"
+done
+grep -q "command: make test\$" "$flow" && grep -q "autograding-grading-reporter@v1" "$flow" &&
+    grep -q "^  - push" "$flow"
+check $? "the workflow runs on each push, runs the checks, and reports to GitHub Classroom"
+sed -n 's/^ *command: //p' "$flow" | head -n 3 >"$work/commands"
+while read -r command; do
+    (cd "$solved" && MAKEFLAGS= CXXFLAGS=-O0 $command >/dev/null 2>&1)
+    check $? "the workflow's \`$command\` passes in a solved kit"
+done <"$work/commands"
 (cd "$solved" && ./ray -o "$work/kit.png" >/dev/null 2>&1) && "$root/ray" --methods handout -o "$work/rt.png" >/dev/null 2>&1 &&
     "$root/ray" --compare "$work/kit.png" "$work/rt.png" >/dev/null
 check $? "the solved kit draws rt's image under the handouts' methods, byte for byte"

@@ -1,10 +1,12 @@
 #!/bin/sh
 # tools/starter.sh DIR [--solved] [--with-wings] -- writes the student kit, DIR/rt-starter and
-# DIR/rt-starter.tar.gz (`make starter`): rt's teaching core and app/ as given code, with the
+# DIR/rt-starter.tar.gz, and Gradescope's autograder, DIR/gradescope and DIR/autograder.zip
+# (`make starter`; SEED=N chooses the autograder's scenes): rt's teaching core and app/ as given code, with the
 # functions tools/starter/stubs.list names replaced by stubs (tools/starter/stubs.txt), and without
 # the robust/ and fast/ wings: the regions of the sources marked `// starter: begin NAME` ...
 # `// starter: end` (tools/starter/regions.awk). The kit is made from the very code rt tests.
-# --solved keeps rt's bodies in place of the stubs (the kit's checks must then all pass).
+# --solved keeps rt's bodies in place of the stubs (the kit's checks must then all pass), and
+# writes no Gradescope bundle.
 # --with-wings keeps robust/ and fast/ (for a teacher who asks for them): the kit then runs rt's
 # robust methods by default, and the handouts' under --methods handout.
 set -eu
@@ -41,5 +43,37 @@ if [ $wings = 1 ]; then
 fi
 cp scenes/*.scene scenes/*.obj "$kit/scenes/"
 cp tools/starter/Makefile tools/starter/README.md tools/starter/stubs.list .clang-format LICENSE "$kit/"
+
+# What a student checks an image against: rt's image of each bundled scene under the handouts'
+# methods (made by `make starter`), and the grader with the public grading scenes (seed 0).
+mkdir -p "$kit/references" "$kit/grade" "$kit/.github/workflows"
+cp build/references/*.png "$kit/references/"
+cp tools/grade/grade.h tools/grade/main.cpp tools/grade/run.cpp tools/grade/judge.cpp \
+    tools/grade/grade.cpp tools/grade/report.cpp tools/grade/build.cpp tools/grade/set_read.cpp "$kit/grade/"
+build/grade-set "$kit/grade/set" --steps "$stubs" --tiny build/tiny
+sh tools/starter/workflow.sh "$kit/grade/set" >"$kit/.github/workflows/classroom.yml"
 (cd "$out" && tar czf rt-starter.tar.gz rt-starter)
+
 echo "$kit/ and $out/rt-starter.tar.gz: the kit, with stubs for:$stubs"
+[ $solved = 1 ] && exit 0 # (no Gradescope bundle: its kit would hold the answers)
+
+# Gradescope's bundle: the kit (what a submission lacks, and the grader's sources), the grading
+# scenes varied by SEED (a new one each time unless given: keep it to grade the same way again).
+seed=${SEED:-$(od -An -N4 -tu4 /dev/urandom | tr -d ' ')}
+bundle=$out/gradescope
+rm -rf "$bundle" "$out/autograder.zip"
+mkdir -p "$bundle"
+cp -R "$kit" "$bundle/kit"
+cp tools/starter/gradescope/setup.sh tools/starter/gradescope/build.sh \
+    tools/starter/gradescope/run_autograder "$bundle/"
+build/grade-set "$bundle/set" --seed "$seed" --steps "$stubs" --tiny build/tiny
+echo "$seed" >"$bundle/seed.txt"
+zipped="$out/autograder.zip"
+if command -v zip >/dev/null; then
+    (cd "$bundle" && zip -qr ../autograder.zip .)
+elif command -v python3 >/dev/null; then
+    (cd "$bundle" && python3 -m zipfile -c ../autograder.zip setup.sh run_autograder build.sh seed.txt kit set)
+else
+    zipped="(no zip or python3 here: zip the files inside $bundle, not the folder)"
+fi
+echo "$zipped: Gradescope's autograder, grading scenes of seed $seed (keep it to grade the same way again)"
