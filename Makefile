@@ -163,7 +163,7 @@ build/references/%.png: scenes/%.scene ray
 	./ray $< --methods handout -o $@ >/dev/null
 
 starter: ray build/tiny build/grade-set $(REFERENCES)
-	@sh tools/starter.sh build/starter
+	@HINTS="$(HINTS)" SEED="$(SEED)" sh tools/starter.sh build/starter
 
 # The grader (tools/grade/, docs/teaching.md): build/grade-set writes a reference set (rt's images
 # of the grading scenes, and those of build/tiny, a tiny tracer with a bug on demand:
@@ -185,7 +185,9 @@ build/grade-set: $(call objs,build/double,tools/grade/set tools/grade/scenes $(G
 KIT_CXXFLAGS = -O2 -std=c++17 -w -ffp-contract=off -fno-math-errno -pthread $(PNG_CFLAGS)
 
 grade: ray build/tiny build/grader build/grade-set
-	@CXX="$(CXX)" KIT_CXXFLAGS="$(KIT_CXXFLAGS)" PNG_LIBS="$(PNG_LIBS)" sh tools/grade.sh
+	@TRACER="$(TRACER)" IMAGES="$(IMAGES)" CLASS="$(CLASS)" SEED="$(SEED)" TIME="$(TIME)" \
+	    REPORT="$(REPORT)" JSON="$(JSON)" KIT="$(KIT)" OUT="$(OUT)" CXX="$(CXX)" \
+	    KIT_CXXFLAGS="$(KIT_CXXFLAGS)" PNG_LIBS="$(PNG_LIBS)" sh tools/grade.sh
 
 # The mesh generator (tools/make_mesh.cpp), for trying the `mesh` statement on large models:
 # `make build/make_mesh`. Not part of `make`: rt does not need it.

@@ -99,9 +99,11 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
     }
     bool shapes = !scene->spheres.empty() || !scene->triangles.empty(); // (else said before)
     if (!opt->view && stats.primary > 0 && stats.primaryHits == 0 && shapes)
+        // starter: begin kit-no-hit
         Complain("warning: no eye ray met a shape: the image is the background alone (is the "
                  "camera turned away, or the scene far larger or smaller than it sees? --stats "
                  "gives each mesh's bounding box)");
+        // starter: end
     if (opt->stats) {
         fprintf(stderr, "%s\n", layoutText.c_str());
         PrintMeshes(scene);

@@ -27,6 +27,7 @@ const char *kUsage =
     "                           shading path, 16 random pilots, then up to N: path-tracing.md)\n"
     "  --depth N                most rays in one chain, primary included, 1..1000 (default 10)\n"
     "  --threads N              worker threads, 1..1024 (default: all hardware threads)\n"
+    // starter: begin kit-usage
     "  --methods robust|handout the numerical methods: rt's robust ones (default), or what a\n"
     "                           student following the course documents writes (the slides'\n"
     "                           GetRay, textbook sphere, Cramer, --self-hit epsilon, Schlick);\n"
@@ -44,6 +45,7 @@ const char *kUsage =
     "                           how the robust tests search the shapes: blocks, with a BVH\n"
     "                           from 32 triangles on (auto, default), one list of blocks, a\n"
     "                           BVH, or the plain loop over the shapes; the answers are the same\n"
+    // starter: end
     "  --estimator full|journal `shading path`: rt's estimator (default: the options below), or\n"
     "                           the journal's, as Ray Tracing in One Weekend writes it\n"
     "  --scatter cosine|uniform `shading path`: diffuse directions drawn by cos(theta) (default)\n"

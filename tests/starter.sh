@@ -47,6 +47,40 @@ check $r "the kit's make test ends with N passed, M failed: $last"
 check $? "the kit's make test fails on the stubs: $last"
 printf '%s\n' "$out" | grep -q "you report t = \|you report no hit: check B = 2 d.(o - c)"
 check $? "a failing check of the sphere says what it should give, what came, and the likely cause"
+printf '%s\n' "$out" | grep -q "fix sphere first: its checks fail"
+check $? "on the first day the shadow's checks say to fix the sphere first, not the shadow"
+
+# The kit speaks of itself: its help, its first-day warning, and its stubs' hints
+help=$(cd "$kit" && ./ray --help)
+printf '%s\n' "$help" | grep -q "the kit's only set" && ! printf '%s\n' "$help" | grep -q "robust ones (default)"
+check $? "the kit's --help gives the kit's methods, not rt's: $(printf '%s\n' "$help" | grep -A1 -- --methods)"
+warning=$(cd "$kit" && ./ray -o "$work/first.png" 2>&1)
+printf '%s\n' "$warning" | grep -q "the stubs are not written yet"
+check $? "the first day's warning speaks of the stubs: $warning"
+grep -q "B = 2 d.(o - c)" "$kit/geometry.cpp" && ! grep -q "sqrt(B^2 - 4AC)" "$kit/geometry.cpp" &&
+    ! grep -q "AnyHitFrom(scene, \*methods, &ray" "$kit/geometry.cpp"
+check $? "by default a stub gives the handout's formula, not the code (hints formula)"
+HINTS=steps sh tools/starter.sh "$work/steps" >/dev/null 2>&1
+grep -q "sqrt(B^2 - 4AC)" "$work/steps/rt-starter/geometry.cpp" &&
+    grep -q "AnyHitFrom(scene, \*methods, &ray" "$work/steps/rt-starter/geometry.cpp"
+check $? "HINTS=steps gives the steps, call by call"
+HINTS=none sh tools/starter.sh "$work/none" >/dev/null 2>&1
+grep -q "Your code: the slide's sphere." "$work/none/rt-starter/geometry.cpp" &&
+    ! grep -q "The hit is the least root t with tMin < t < tMax" "$work/none/rt-starter/geometry.cpp"
+check $? "HINTS=none names the step alone"
+
+# stubs.list lines that name no step are refused, naming the line; CR LF lines are read
+for bad in "sph.re" "*" "sphere spheer" "hints lots"; do
+    printf 'get-ray\n%s\n' "$bad" >"$work/bad.list"
+    err=$(STUBS_LIST=$work/bad.list sh tools/starter.sh "$work/bad" 2>&1 >/dev/null)
+    status=$?
+    [ $status -ne 0 ] && printf '%s\n' "$err" | grep -q "bad.list:2: "
+    check $? "a stubs.list line \`$bad\` is refused, naming its line: $err"
+done
+printf 'get-ray\r\nsphere # the quadratic\r\n' >"$work/crlf.list"
+STUBS_LIST=$work/crlf.list sh tools/starter.sh "$work/crlf" >/dev/null 2>&1 &&
+    grep -q "Your code: the slide's sphere" "$work/crlf/rt-starter/geometry.cpp"
+check $? "a stubs.list with CR LF line ends is read"
 
 sh tools/starter.sh "$work/solved" --solved >/dev/null
 solved=$work/solved/rt-starter
@@ -70,6 +104,41 @@ while read -r command; do
     (cd "$solved" && MAKEFLAGS= CXXFLAGS=-O0 $command >/dev/null 2>&1)
     check $? "the workflow's \`$command\` passes in a solved kit"
 done <"$work/commands"
+
+# Each classic bug written into a solved kit (tests/kit_bugs.txt) fails a check of its own step
+# with that step's advice, and no check of an earlier step; and the grader names it on its scene.
+all="get-ray normals sphere cramer plane nearest-hit shadow floor reflect depth phong refraction clamp"
+allset=$work/allset
+build/grade-set "$allset" --steps "$all" --tiny build/tiny
+bugkit=$work/bugkit
+cp -R "$solved" "$bugkit"
+grep -v '^#' tests/kit_bugs.txt >"$work/bugs"
+while read -r bug step file function script; do
+    sed "/^[a-z].*[ *]$function(/,/^}/{
+$script
+}" "$solved/$file" >"$bugkit/$file"
+    ! cmp -s "$solved/$file" "$bugkit/$file"
+    check $? "the $bug bug is written into $file's $function (tests/kit_bugs.txt still fits the code)"
+    kitmake "$bugkit" ray build/run_tests >"$work/bug.log" 2>&1
+    check $? "a kit with the $bug bug builds: $(grep error "$work/bug.log" | head -2)"
+    out=$(cd "$bugkit" && build/run_tests $all 2>&1)
+    own=$(printf '%s\n' "$out" | awk -v s="$step" '/^== /{ sec = $2; next } sec == s && /^tests\// && !/ first: its checks fail/' | head -n 1)
+    earlier=$(printf '%s\n' "$out" | awk -v s="$step" '/^== /{ if ($2 == s) done = 1; next } !done && /^tests\//' | head -n 1)
+    [ -n "$own" ]
+    check $? "the $bug bug fails a check of the $step step, with its advice: $(printf '%s\n' "$out" | grep -A2 "^== $step")"
+    [ -z "$earlier" ]
+    check $? "the $bug bug fails no check of a step before $step: $earlier"
+    advice=$(sed -n "s/^$bug //p" "$allset/bugs.txt")
+    for scene in $(awk -v b="$bug" '{ for (i = 2; i <= NF; i++) { split($i, n, "="); if (n[1] == b) print $1 } }' "$allset/scenes.txt"); do
+        triangle="" # (a kit's ./ray draws triangles by Cramer's rule unless plane is its step)
+        [ "$step" = plane ] && triangle="--triangle plane"
+        line=$(build/grader "$allset" --scene "$scene" -- "$bugkit/ray" $triangle | head -n 1)
+        printf '%s\n' "$line" | grep -qF "looks like $advice"
+        check $? "the grader names the kit's $bug bug on $scene: $line"
+    done
+    cp "$solved/$file" "$bugkit/$file"
+done <"$work/bugs"
+
 (cd "$solved" && ./ray -o "$work/kit.png" >/dev/null 2>&1) && "$root/ray" --methods handout -o "$work/rt.png" >/dev/null 2>&1 &&
     "$root/ray" --compare "$work/kit.png" "$work/rt.png" >/dev/null
 check $? "the solved kit draws rt's image under the handouts' methods, byte for byte"

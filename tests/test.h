@@ -110,11 +110,18 @@ void TestLeaks();
 void TestHandout();
 
 // The handouts' steps checked as their debugging advice puts it (test_handout.cpp), a group a
-// step, named as a starter kit's stubs.list names the function a student writes.
+// step, named as a starter kit's stubs.list names the function a student writes; `needs`, the
+// earlier steps its checks go through (space-separated).
 struct HandoutGroup {
     const char *name;
     void (*run)();
+    const char *needs;
 };
+
+// One check of a handout step: the prediction, what came out, the likely cause. rt's harness
+// (test_main.cpp) prints the three; a kit's (kit_main.cpp) blames an earlier step that fails.
+void TestAdvice(bool ok, const char *file, int line, const std::string &should,
+                const std::string &got, const std::string &cause);
 extern const HandoutGroup kHandoutGroups[];
 extern const int kHandoutGroupCount;
 

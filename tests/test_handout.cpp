@@ -1,29 +1,23 @@
 // tests/test_handout.cpp -- the handouts' steps checked as their debugging advice puts it: a
 // scene, a ray, the answer worked out by hand, and, when the answer differs, what was found and
-// the most likely cause. rt runs them (group `handout`, in the handouts' methods); a starter kit
-// runs the groups of the functions its students write (tools/starter/stubs.list).
-#include "test.h"
+// the most likely cause. This file: the rays and the shapes (GetRay, the normal, the sphere, the
+// triangle by Cramer's rule or the plane test, the nearest hit); test_handout_light.cpp: the
+// light (shadows, shading, mirrors, the depth, Phong, refraction, colours), and the groups. rt
+// runs them all (group `handout`, in the handouts' methods); a starter kit runs the groups of the
+// steps its students write (tools/starter/stubs.list).
+#include "test_handout.h"
 
 #include <cstdio>
 
-// One check: `should` is the prediction, `got` what came out, `cause` the likely mistake.
-#define ADVISE(ok, should, got, cause) Advise((ok), __FILE__, __LINE__, (should), (got), (cause))
-static void Advise(bool ok, const char *file, int line, const std::string &should,
-                   const std::string &got, const std::string &cause) {
-    TestCheck(ok, file, line, should + "; " + got + (cause.empty() ? "" : ": " + cause), "handout");
-}
-
-static std::string Num(double x) {
+std::string Num(double x) {
     char text[32];
     snprintf(text, sizeof text, "%.6g", x);
     return text;
 }
-static std::string Vec(vec3 v) { return "(" + Num(v.x) + ", " + Num(v.y) + ", " + Num(v.z) + ")"; }
-static bool Near(double a, double b) { return std::fabs(a - b) <= 1e-5 * (1 + std::fabs(b)); }
-static bool Near(vec3 a, vec3 b) { return Near(a.x, b.x) && Near(a.y, b.y) && Near(a.z, b.z); }
-static std::string Found(bool hit, real t) {
-    return hit ? "you report t = " + Num(t) : "you report no hit";
-}
+std::string Vec(vec3 v) { return "(" + Num(v.x) + ", " + Num(v.y) + ", " + Num(v.z) + ")"; }
+bool Near(double a, double b) { return std::fabs(a - b) <= 1e-5 * (1 + std::fabs(b)); }
+bool Near(vec3 a, vec3 b) { return Near(a.x, b.x) && Near(a.y, b.y) && Near(a.z, b.z); }
+std::string Found(bool hit, real t) { return hit ? "you report t = " + Num(t) : "you report no hit"; }
 
 // ---- GetRay ----------------------------------------------------------------------------------
 
@@ -59,50 +53,82 @@ static void TestGetRay() {
          wantTop = SafeNormalize({-1 + 1.0 / 512, 0.5 - 1.0 / 512, -2});
     ADVISE(Near(top, wantTop),
            "in a 512 x 256 image the pixels stay square: (0.5, 0.5) along " + Vec(wantTop),
-           "your ray goes " + Vec(top), "one size for both axes, width / widthPixels");
+           "your ray goes " + Vec(top),
+           "one size for both axes, width / widthPixels (a pixel's height is not width / H)");
+}
+
+// ---- the normal, turned toward the viewer ------------------------------------------------------
+
+static void TestNormals() {
+    Ray ray = {{0, 0, 0}, {0, 0, -1}};
+    RayHit hit = {};
+    SetFaceNormal(&ray, {0, 0, 1}, &hit);
+    ADVISE(Near(hit.normal, {0, 0, 1}) && hit.frontFace,
+           "a surface whose outward normal (0, 0, 1) faces the ray keeps it, seen from the front",
+           "you give " + Vec(hit.normal) + (hit.frontFace ? ", front" : ", back"),
+           "N stays as it is when N.D < 0");
+    SetFaceNormal(&ray, {0, 0, -1}, &hit);
+    ADVISE(Near(hit.normal, {0, 0, 1}) && !hit.frontFace,
+           "seen from behind (outward normal (0, 0, -1), along the ray), the normal turns toward "
+           "the viewer: (0, 0, 1), and frontFace is false",
+           "you give " + Vec(hit.normal) + (hit.frontFace ? ", front" : ", back"),
+           "if N.D > 0, N = -N: a light behind a surface must not light its front");
 }
 
 // ---- the sphere --------------------------------------------------------------------------------
 
-static bool HitSphereAt(vec3 origin, vec3 dir, vec3 centre, real radius, real tMax, RayHit *hit) {
+static bool HitSphereAt(vec3 origin, vec3 dir, vec3 centre, real radius, real tMin, real tMax,
+                        RayHit *hit) {
     Sphere s = {centre, radius, 0};
     Ray ray = {origin, dir};
-    return IntersectSphereTextbook(&s, &ray, 0, tMax, hit);
+    return IntersectSphereTextbook(&s, &ray, tMin, tMax, hit);
 }
 
 static void TestSphere() {
     RayHit hit = {};
-    bool found = HitSphereAt({0, 0, 0}, {0, 0, -1}, {0, 0, -5}, 1, kInfinity, &hit);
-    std::string cause = !found ? "check B = 2 d.(o - c), and that B^2 - 4AC >= 0 is a hit"
+    // The handout's numbers: o = (0,0,0), d = (0,0,-1), c = (0,0,-5), r = 1 give A = 1,
+    // B = 2 d.(o - c) = -10, C = |o - c|^2 - r^2 = 24: B^2 - 4AC = 4, roots (10 -+ 2) / 2 = 4, 6.
+    bool found = HitSphereAt({0, 0, 0}, {0, 0, -1}, {0, 0, -5}, 1, 0, kInfinity, &hit);
+    std::string cause = !found ? "check B = 2 d.(o - c) = -10, C = 24, and that B^2 - 4AC >= 0 "
+                                 "is a hit"
                         : Near(hit.t, 6)
                             ? "you returned the far root: take the least root above tMin"
                         : hit.t < 0 ? "t is negative: the roots are (-B -+ sqrt(B^2 - 4AC)) / 2A"
                         : Near(hit.t, 8) || Near(hit.t, 2) ? "divide by 2A, not A or 4A"
-                                                           : "check A, B and C";
+                                                           : "check A = 1, B = -10, C = 24";
     ADVISE(found && Near(hit.t, 4),
-           "the ray (0,0,0) -> (0,0,-1) meets the sphere of radius 1 at (0,0,-5) at t = 4",
+           "the ray (0,0,0) -> (0,0,-1) meets the sphere of radius 1 at (0,0,-5) at t = 4 "
+           "(A = 1, B = -10, C = 24: roots 4 and 6)",
            Found(found, hit.t), cause);
     if (found) // (only a hit has a normal)
         ADVISE(Near(hit.normal, {0, 0, 1}), "there its normal is (0, 0, 1), back toward the eye",
                "yours is " + Vec(hit.normal), "SetHandoutSphereHit(s, ray, t, hit) writes it");
-    found = HitSphereAt({0, 0, -5}, {0, 0, -1}, {0, 0, -5}, 1, kInfinity, &hit);
+    found = HitSphereAt({0, 0, -5}, {0, 0, -1}, {0, 0, -5}, 1, 0, kInfinity, &hit);
     ADVISE(found && Near(hit.t, 1),
            "from the sphere's centre, the ray (0,0,-5) -> (0,0,-1) meets it at t = 1",
            Found(found, hit.t),
            found && Near(hit.t, -1)
                ? "the near root is behind the ray: take the least root above tMin"
                : "from inside, the near root is negative: the far one is the hit");
-    found = HitSphereAt({0, 0, 0}, {0, 0, 1}, {0, 0, -5}, 1, kInfinity, &hit);
+    found = HitSphereAt({0, 0, -4 + 1e-6}, {0, 0, -1}, {0, 0, -5}, 1, 1e-4, kInfinity, &hit);
+    ADVISE(found && Near(hit.t, 2 + 1e-6),
+           "a ray that starts on the sphere, 1e-6 before it, with tMin = 1e-4 (as a shadow or "
+           "mirror ray leaving it does), passes the root at 1e-6 and meets the far side at t = 2",
+           Found(found, hit.t),
+           found && hit.t < 1e-4 ? "a root at or below tMin counts: accept only tMin < t < tMax "
+                                   "(else every ray that leaves a sphere finds it again: acne)"
+                                 : "the least root above tMin: here the far one");
+    found = HitSphereAt({0, 0, 0}, {0, 0, 1}, {0, 0, -5}, 1, 0, kInfinity, &hit);
     ADVISE(!found, "the sphere behind the ray (0,0,0) -> (0,0,1) is not hit", Found(found, hit.t),
            "both roots are negative: no root above tMin, no hit");
-    found = HitSphereAt({0, 2, 0}, {0, 0, -1}, {0, 0, -5}, 1, kInfinity, &hit);
+    found = HitSphereAt({0, 2, 0}, {0, 0, -1}, {0, 0, -5}, 1, 0, kInfinity, &hit);
     ADVISE(!found,
            "the ray (0,2,0) -> (0,0,-1) passes 2 from the centre of a sphere of radius 1: a miss",
            Found(found, hit.t), "B^2 - 4AC < 0 means no hit");
-    found = HitSphereAt({0, 0, 0}, {0, 0, -1}, {0, 0, -5}, 1, 3, &hit);
+    found = HitSphereAt({0, 0, 0}, {0, 0, -1}, {0, 0, -5}, 1, 0, 3, &hit);
     ADVISE(!found, "with tMax = 3 the sphere at t = 4 is not hit (a shadow ray stops at its light)",
            Found(found, hit.t), "a root counts only if tMin < t < tMax");
-    found = HitSphereAt({0, 0, 0}, {0, 0, -2}, {0, 0, -5}, 1, kInfinity, &hit);
+    found = HitSphereAt({0, 0, 0}, {0, 0, -2}, {0, 0, -5}, 1, 0, kInfinity, &hit);
     ADVISE(found && Near(hit.t, 2), "along d = (0, 0, -2), twice as long, the sphere is at t = 2",
            Found(found, hit.t),
            found && Near(hit.t, 3) ? "the far root again: take the least root above tMin"
@@ -114,47 +140,118 @@ static void TestSphere() {
 
 typedef bool (*TriangleTest)(const Triangle *, const Ray *, real, real, RayHit *);
 
-// The triangle (-1,-1,-3), (1,-1,-3), (0,1,-3), 3 ahead of the eye, by `test`.
-static void TestTriangle(TriangleTest test, const char *name) {
-    Triangle tri = {{-1, -1, -3}, {1, -1, -3}, {0, 1, -3}, 0};
-    RayHit hit = {};
-    Ray ray = {{0, 0, 0}, {0, 0, -1}};
-    bool found = test(&tri, &ray, 0, kInfinity, &hit);
-    ADVISE(
-        found && Near(hit.t, 3),
-        std::string(name) + ": the ray (0,0,0) -> (0,0,-1) meets the triangle at z = -3 at t = 3",
-        Found(found, hit.t),
-        found && Near(hit.t, -3) ? "t's sign: t = -(F (AK - JB) + E (JC - AL) + D (BL - KC)) / M"
-                                 : "check the variables (J = a.x - e.x: the corner minus the eye)");
-    ray.dir = {0.3, 0.3, -1};
-    found = test(&tri, &ray, 0, kInfinity, &hit);
-    ADVISE(!found,
-           std::string(name) + ": the ray toward (0.9, 0.9, -3) passes outside the triangle",
-           Found(found, hit.t), "outside when beta < 0, gamma < 0 or beta + gamma > 1");
-    ray.dir = {0, 0, 1};
-    found = test(&tri, &ray, 0, kInfinity, &hit);
-    ADVISE(!found, std::string(name) + ": the triangle is behind the ray (0,0,0) -> (0,0,1)",
-           Found(found, hit.t), "a hit needs tMin < t");
-    ray.dir = {1, 0, 0};
-    found = test(&tri, &ray, 0, kInfinity, &hit);
-    ADVISE(!found, std::string(name) + ": the ray (0,0,0) -> (1,0,0) runs parallel to the triangle",
-           Found(found, hit.t), "parallel means a zero determinant (M = 0, or n.d = 0): no hit");
-    ray.dir = {0, -1, -3};
-    found = test(&tri, &ray, 0, kInfinity, &hit);
-    ADVISE(found && Near(hit.t, 1),
-           std::string(name) +
-               ": the ray toward (0, -1, -3), on the edge from a to b, hits it at t = 1",
-           Found(found, hit.t),
-           "an edge belongs to the triangle (beta >= 0, gamma >= 0, beta + gamma <= 1): with > the "
-           "rays through an edge two triangles share slip through");
+// What to say of a triangle test's mistakes, in the method's own terms.
+struct TriangleAdvice {
+    const char *name, *terms, *tSign, *parallel, *inside, *edge;
+};
+static const TriangleAdvice kCramer = {
+    "Cramer's rule",
+    "check the variables (J = a.x - e.x: the corner minus the eye) and each product of M, t, "
+    "beta and gamma: a tilted triangle uses every term, so a sign in one shows here",
+    "t's sign: t = -(F (AK - JB) + E (JC - AL) + D (BL - KC)) / M",
+    "parallel means M = 0: no hit",
+    "inside when beta >= 0, gamma >= 0 and beta + gamma <= 1 (beta <= 1 - gamma: not beta <= 1, "
+    "nor gamma against 1 - gamma)",
+    "an edge belongs to the triangle (beta >= 0, gamma >= 0, beta + gamma <= 1): with > the rays "
+    "through an edge two triangles share slip through"};
+static const TriangleAdvice kPlane = {
+    "the plane test",
+    "check n = (b - a) x (c - a), t = n.(a - o) / n.d and p = o + t d",
+    "t's sign: t = n.(a - o) / n.d, the corner minus the ray's origin",
+    "parallel means n.d = 0: no hit",
+    "inside when (b - a) x (p - a), (c - b) x (p - b) and (a - c) x (p - c) each point the way n "
+    "does, compared on n's largest coordinate (drop that one, not always z)",
+    "an edge belongs to the triangle: a cross product of 0 there is not against n (< 0 is "
+    "outside, not <= 0)"};
+
+// The triangle (-1,-1,-3), (1,-1,-3), (0,1,-3), 3 ahead of the eye, and the ray toward the point
+// a + beta (b - a) + gamma (c - a) of its plane, which meets it at t = 1 if it is inside.
+static const Triangle kTriangle = {{-1, -1, -3}, {1, -1, -3}, {0, 1, -3}, 0};
+static const struct {
+    real beta, gamma;
+    bool inside;
+    const char *where;
+} kRegions[] = {
+    {0.1, 0.1, true, "inside, near a"},        {0.8, 0.1, true, "inside, near b"},
+    {0.1, 0.8, true, "inside, near c"},        {0.5, -0.2, false, "beyond the edge a-b"},
+    {0.6, 0.6, false, "beyond the edge b-c"},  {-0.2, 0.5, false, "beyond the edge c-a"},
+    {-0.2, -0.2, false, "beyond the corner a"}, {1.2, -0.1, false, "beyond the corner b"},
+    {-0.1, 1.2, false, "beyond the corner c"},
+};
+
+static void TestRegions(TriangleTest test, const TriangleAdvice *a) {
+    const Triangle *tri = &kTriangle;
+    for (const auto &r : kRegions) {
+        vec3 p = tri->a + r.beta * (tri->b - tri->a) + r.gamma * (tri->c - tri->a);
+        Ray ray = {{0, 0, 0}, p};
+        RayHit hit = {};
+        bool found = test(tri, &ray, 0, kInfinity, &hit);
+        ADVISE(found == r.inside && (!found || Near(hit.t, 1)),
+               std::string(a->name) + ": the ray toward " + Vec(p) + " (beta " + Num(r.beta) +
+                   ", gamma " + Num(r.gamma) + ": " + r.where + ") " +
+                   (r.inside ? "hits it at t = 1" : "misses it"),
+               Found(found, hit.t), a->inside);
+    }
 }
 
-static void TestCramer() { TestTriangle(IntersectTriangleCramer, "Cramer's rule"); }
-static void TestPlane() { TestTriangle(IntersectTrianglePlane, "the plane test"); }
+static void TestTriangle(TriangleTest test, const TriangleAdvice *a) {
+    const Triangle *tri = &kTriangle;
+    RayHit hit = {};
+    Ray ray = {{0, 0, 0}, {0, 0, -1}};
+    bool found = test(tri, &ray, 0, kInfinity, &hit);
+    ADVISE(found && Near(hit.t, 3),
+           std::string(a->name) + ": the ray (0,0,0) -> (0,0,-1) meets the triangle at z = -3 at t = 3",
+           Found(found, hit.t), found && Near(hit.t, -3) ? a->tSign : a->terms);
+    Triangle tilted = {{1, 0, -4}, {0, 2, -5}, {-1, -1, -3}, 0};
+    ray.dir = {0, real(1) / 3, -4}; // toward its centroid
+    found = test(&tilted, &ray, 0, kInfinity, &hit);
+    ADVISE(found && Near(hit.t, 1),
+           std::string(a->name) + ": the tilted triangle (1,0,-4), (0,2,-5), (-1,-1,-3) is met at "
+                                  "its centroid (0, 1/3, -4) at t = 1",
+           Found(found, hit.t), found && Near(hit.t, -1) ? a->tSign : a->terms);
+    ray.dir = {0, 0, -1};
+    ray.origin = {0, 0, -3 + 1e-6};
+    found = test(tri, &ray, 1e-4, kInfinity, &hit);
+    ADVISE(!found,
+           std::string(a->name) + ": a ray that starts 1e-6 before the triangle, with tMin = 1e-4 "
+                                  "(a shadow or mirror ray leaving it), does not hit it",
+           Found(found, hit.t),
+           "a hit needs tMin < t < tMax (else every ray that leaves a triangle finds it again)");
+    ray.origin = {0, 0, 0};
+    ray.dir = {0, 0, 1};
+    found = test(tri, &ray, 0, kInfinity, &hit);
+    ADVISE(!found, std::string(a->name) + ": the triangle is behind the ray (0,0,0) -> (0,0,1)",
+           Found(found, hit.t), found ? a->tSign : "a hit needs tMin < t");
+    ray.dir = {1, 0, 0};
+    found = test(tri, &ray, 0, kInfinity, &hit);
+    ADVISE(!found, std::string(a->name) + ": the ray (0,0,0) -> (1,0,0) runs parallel to the triangle",
+           Found(found, hit.t), a->parallel);
+    ray.dir = {0, -1, -3};
+    found = test(tri, &ray, 0, kInfinity, &hit);
+    ADVISE(found && Near(hit.t, 1),
+           std::string(a->name) +
+               ": the ray toward (0, -1, -3), on the edge from a to b, hits it at t = 1",
+           Found(found, hit.t), a->edge);
+    TestRegions(test, a);
+    Triangle floor = {{-2, -1, -2}, {2, -1, -2}, {0, -1, -6}, 0}; // (facing up: n along y)
+    ray.dir = {0, -1, -3};
+    found = test(&floor, &ray, 0, kInfinity, &hit);
+    ADVISE(found && Near(hit.t, 1),
+           std::string(a->name) + ": the floor triangle (-2,-1,-2), (2,-1,-2), (0,-1,-6) is met "
+                                  "at (0, -1, -3) at t = 1",
+           Found(found, hit.t), a->inside);
+    ray.dir = {1.9, -1, -5};
+    found = test(&floor, &ray, 0, kInfinity, &hit);
+    ADVISE(!found, std::string(a->name) + ": the ray toward (1.9, -1, -5) passes beside that floor",
+           Found(found, hit.t), a->inside);
+}
+
+static void TestCramer() { TestTriangle(IntersectTriangleCramer, &kCramer); }
+static void TestPlane() { TestTriangle(IntersectTrianglePlane, &kPlane); }
 
 // ---- the nearest hit ---------------------------------------------------------------------------
 
-static Material Plain(color kd) { return {"plain", kd, kd, 0, 1, 0, 0, {0, 0, 0}}; }
+Material Plain(color kd) { return {"plain", kd, kd, 0, 1, 0, 0, {0, 0, 0}}; }
 
 static void TestNearestHit() {
     Scene scene;
@@ -188,178 +285,23 @@ static void TestNearestHit() {
            "only hits with tMin < t < tMax count");
 }
 
-// ---- the shadow --------------------------------------------------------------------------------
-
-// A floor at y = 0, facing up, wide enough for every check below; its material 0.
-const Triangle kFloor = {{-10, 0, 10}, {10, 0, 10}, {0, 0, -10}, 0};
-
-// A floor at y = 0 and a ball of radius 0.5 at (0, 2, 0); the point (0, 0, 0) on the floor.
-static void ShadowScene(Scene *scene, RayHit *floorPoint) {
-    InitScene(scene);
-    scene->materials = {Plain({1, 1, 1})};
-    scene->triangles = {kFloor};
-    scene->spheres = {{{0, 2, 0}, 0.5, 0}};
-    *floorPoint = {1, {0, 0, 0}, {0, 1, 0}, true, 0, SHAPE_TRIANGLE, 0, {0, 0, 0}, 0};
-}
-
-static void TestShadow() {
-    Scene scene;
-    RayHit floor;
-    ShadowScene(&scene, &floor);
-    const Methods *m = &kHandoutMethods;
-    bool visible = LightVisible(&scene, m, &floor, {0, 4, 0});
-    ADVISE(!visible,
-           "the ball at (0, 2, 0) hides the light at (0, 4, 0) from the floor at (0, 0, 0)",
-           "you say the light is visible",
-           "the shadow ray toward the light must find the ball (this needs the sphere test and the "
-           "nearest-hit loop)");
-    visible = LightVisible(&scene, m, &floor, {0, 1, 0});
-    ADVISE(visible, "with the light at (0, 1, 0), below the ball, the floor is lit",
-           "you say the light is hidden", "a shape beyond the light (t > 1) casts no shadow");
-    visible = LightVisible(&scene, m, &floor, {3, 4, 0});
-    ADVISE(visible, "the light at (3, 4, 0) is not hidden: the ball is off the way",
-           "you say the light is hidden",
-           "does the floor hide itself? the shadow ray starts on it: use ShadowRay's `from`");
-    RayHit top = {1, {0, 2.5, 0}, {0, 1, 0}, true, 0, SHAPE_SPHERE, 0, {0, 0, 0}, 0};
-    visible = LightVisible(&scene, m, &top, {0, 4, 0});
-    ADVISE(visible, "the top of the ball, (0, 2.5, 0), sees the light at (0, 4, 0)",
-           "you say the light is hidden", "shadow acne: the ray hits the ball it starts on");
-}
-
-// The colour one ray brings back from `scene`, traced as a render in the handouts' methods traces
-// it (*stats: the rays it took, if asked).
-static color TraceOne(const Scene *scene, Ray ray, RayStats *stats) {
-    RenderSettings settings = {};
-    settings.width = settings.height = 8, settings.samplesPerPixel = 1;
-    settings.depth = scene->depth, settings.threads = 1, settings.methods = kHandoutMethods;
-    PlanRender(scene, &settings);
-    TraceLog log = {{}, nullptr, -1, 0};
-    color c = TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
-    if (stats)
-        *stats = log.stats;
-    return c;
-}
-
-// ---- the floor shading --------------------------------------------------------------------------
-
-// The colour seen straight down at the floor's point (0, 0, 0), lit from `light`.
-static color FloorSeen(vec3 light) {
-    Scene scene;
-    InitScene(&scene); // ambient 0.2
-    scene.materials = {Plain({1, 0.5, 0.25})};
-    scene.triangles = {kFloor};
-    scene.lights = {{light, {1, 1, 1}}};
-    Ray ray = {{0, 1, 0}, {0, -1, 0}};
-    return TraceOne(&scene, ray, nullptr);
-}
-
-static void TestFloor() {
-    const std::string needs = " (this needs Cramer's rule and the nearest-hit loop)";
-    color c = FloorSeen({0, 4, 0});
-    ADVISE(Near(c, {1, 0.5, 0.25}),
-           "lit from straight above, N.L = 1: the colour kd = (1, 0.5, 0.25)", "you give " + Vec(c),
-           Near(c, {0.2, 0.1, 0.05}) ? "the light is missing: N.L > 0 and visible, add it" + needs
-                                     : "kd max(ambient, N.L), with L of length 1");
-    c = FloorSeen({4 * std::sqrt(real(3)), 4, 0}); // 60 degrees from the normal: N.L = 0.5
-    ADVISE(Near(c, {0.5, 0.25, 0.125}), "lit at 60 degrees, N.L = 0.5: kd 0.5 = (0.5, 0.25, 0.125)",
-           "you give " + Vec(c), "N.L with L normalised: (N.L) / |L|");
-    c = FloorSeen({4, 0.4, 0}); // N.L = 0.0995, below the ambient 0.2
-    ADVISE(Near(c, {0.2, 0.1, 0.05}),
-           "lit at a grazing angle, N.L = 0.1: kd max(0.2, 0.1) = (0.2, 0.1, 0.05)",
-           "you give " + Vec(c), "the ambient floor: max(ambient, N.L)");
-    c = FloorSeen({0, -4, 0});
-    ADVISE(Near(c, {0.2, 0.1, 0.05}),
-           "lit from below the floor: only the ambient floor, (0.2, 0.1, 0.05)",
-           "you give " + Vec(c), "a light behind the surface (N.L < 0) adds nothing");
-}
-
-// ---- mirrors
-// -------------------------------------------------------------------------------------
-
-static void TestReflect() {
-    vec3 r = Reflect({0.6, -0.8, 0}, {0, 1, 0});
-    ADVISE(Near(r, {0.6, 0.8, 0}),
-           "(0.6, -0.8, 0) off a floor with N = (0, 1, 0) goes (0.6, 0.8, 0)", "you give " + Vec(r),
-           Near(r, {0.6, -2.4, 0})   ? "R = D - 2 (D.N) N: the second term's sign"
-           : Near(r, {-0.6, 0.8, 0}) ? "that is -R: R = D - 2 (D.N) N, not 2 (D.N) N - D"
-                                     : "R = D - 2 (D.N) N");
-    r = Reflect({3, -4, 0}, {0, 1, 0});
-    ADVISE(Near(r, {3, 4, 0}), "(3, -4, 0), not of length 1, comes back as (3, 4, 0)",
-           "you give " + Vec(r), "reflect D as it is: only N needs length 1");
-}
-
-// Reflection rays in one chain between two facing mirrors, 2 apart, with `depth`.
-static uint64_t MirrorChain(int depth) {
-    Scene scene;
-    InitScene(&scene);
-    Material half = Plain({1, 1, 1});
-    half.mirror = 0.5;
-    scene.materials = {half};
-    scene.triangles = {{{-10, -10, -1}, {10, -10, -1}, {0, 10, -1}, 0},
-                       {{-10, -10, 1}, {0, 10, 1}, {10, -10, 1}, 0}};
-    scene.depth = depth;
-    Ray ray = {{0, 0, 0}, {0, 0, -1}};
-    RayStats stats;
-    TraceOne(&scene, ray, &stats);
-    return stats.reflection;
-}
-
-static void TestDepth() {
-    uint64_t n = MirrorChain(10);
-    ADVISE(
-        n == 9, "between two facing mirrors, depth 10: the eye's ray and 9 reflections, then black",
-        "you trace " + std::to_string(n) + " reflections",
-        n == 0 ? "no reflection at all: the reflect step, Cramer's rule and the nearest-hit loop "
-                 "come first"
-               : "at most `depth` rays in a chain: if next.number > depth, return black");
-    n = MirrorChain(1);
-    ADVISE(n == 0, "with depth 1, only the eye's ray",
-           "you trace " + std::to_string(n) + " reflections",
-           "the eye's ray is number 1: with depth 1 nothing follows it");
-}
-
-// ---- Phong and refraction ------------------------------------------------------------------
-
-static void TestPhong() {
-    Scene scene;
-    InitScene(&scene);
-    scene.shading = SHADING_PHONG;
-    scene.ambient = 0.1;
-    Material m = Plain({0.5, 0.5, 0.5});
-    m.ambient = {1, 1, 1}, m.specular = 0.5, m.shininess = 1;
-    scene.materials = {m};
-    scene.triangles = {kFloor};
-    scene.lights = {{{0, 4, 0}, {1, 1, 1}}};
-    Ray ray = {{0, 1, 0}, {0, -1, 0}};
-    color c = TraceOne(&scene, ray, nullptr);
-    // ka Ia + I (kd N.L + ks (R.V)^n) = 0.1 + (0.5 + 0.5) = 1.1 in every channel
-    ADVISE(Near(c, {1.1, 1.1, 1.1}),
-           "Phong, light and eye straight above: ka Ia + kd + ks = 0.1 + 0.5 + 0.5 = 1.1",
-           "you give " + Vec(c), "ka Ia + I (kd (N.L) + ks max(0, R.V)^n), with R = 2 (N.L) N - L");
-}
-
-static void TestRefraction() {
-    vec3 t = {0, 0, 0};
-    real s = std::sqrt(real(0.5));
-    bool refracts = Refract({s, -s, 0}, {0, 1, 0}, 1 / real(1.5), &t);
-    real sinT = s / real(1.5); // Snell: sin t = eta sin i
-    vec3 want = {sinT, -std::sqrt(1 - sinT * sinT), 0};
-    ADVISE(refracts && Near(t, want),
-           "into glass of index 1.5 at 45 degrees: sin t = sin 45 / 1.5, t = " + Vec(want),
-           refracts ? "you give " + Vec(t) : "you say it does not refract",
-           "eta d + (eta cos i - cos t) n");
-    refracts = Refract({s, -s, 0}, {0, 1, 0}, real(1.5), &t);
-    ADVISE(!refracts, "out of glass at 45 degrees: eta sin i = 1.06 > 1, total internal reflection",
-           "you say it refracts", "no refraction when eta^2 (1 - cos^2 i) > 1");
-}
-
-// ---- the groups ------------------------------------------------------------------------------
-
+// The groups, a step each, in the handouts' order; each names the steps its checks go through
+// first (a check of the shadow traces rays that the sphere and the nearest hit must find), so
+// that a failure there is blamed on the earliest step that fails.
 const HandoutGroup kHandoutGroups[] = {
-    {"get-ray", TestGetRay}, {"sphere", TestSphere},          {"cramer", TestCramer},
-    {"plane", TestPlane},    {"nearest-hit", TestNearestHit}, {"shadow", TestShadow},
-    {"floor", TestFloor},    {"reflect", TestReflect},        {"depth", TestDepth},
-    {"phong", TestPhong},    {"refraction", TestRefraction},
+    {"get-ray", TestGetRay, ""},
+    {"normals", TestNormals, ""},
+    {"sphere", TestSphere, "normals"},
+    {"cramer", TestCramer, "normals"},
+    {"plane", TestPlane, "normals"},
+    {"nearest-hit", TestNearestHit, "sphere cramer"},
+    {"shadow", TestShadow, "sphere cramer nearest-hit"},
+    {"floor", TestFloor, "normals cramer nearest-hit shadow"},
+    {"reflect", TestReflect, ""},
+    {"depth", TestDepth, "normals cramer nearest-hit reflect"},
+    {"phong", TestPhong, "normals sphere cramer nearest-hit shadow"},
+    {"refraction", TestRefraction, ""},
+    {"clamp", TestClamp, ""},
 };
 const int kHandoutGroupCount = sizeof kHandoutGroups / sizeof kHandoutGroups[0];
 

@@ -20,6 +20,11 @@ void TestCheck(bool ok, const char *file, int line, const std::string &why,
     printf("%s:%d: FAILED %s (%s)\n", file, line, why.c_str(), detail.c_str());
 }
 
+void TestAdvice(bool ok, const char *file, int line, const std::string &should,
+                const std::string &got, const std::string &cause) {
+    TestCheck(ok, file, line, should + "; " + got + (cause.empty() ? "" : ": " + cause), "handout");
+}
+
 std::string DescribeNear(double actual, double expected, double tolerance) {
     char text[160];
     snprintf(text, sizeof text, "got %.17g, expected %.17g within %.3g", actual, expected,

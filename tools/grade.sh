@@ -12,7 +12,7 @@
 # Gradescope's results.json. The steps handed out are tools/starter/stubs.list's.
 set -u
 seed=${SEED:-0}
-steps=$(sed 's/#.*//' tools/starter/stubs.list | tr -s ' \t\r\n' '    ')
+steps=$(sed 's/#.*//; /^[ 	]*hints/d' tools/starter/stubs.list | tr -s ' \t\r\n' '    ')
 set_dir=$(mktemp -d "${TMPDIR:-/tmp}/rt-set-XXXXXX") || exit 2
 trap 'rm -rf "$set_dir"' EXIT
 trap 'exit 2' INT TERM

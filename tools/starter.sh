@@ -21,20 +21,43 @@ for option in "$@"; do
     esac
 done
 kit=$out/rt-starter
-stubs=" $(sed 's/#.*//' tools/starter/stubs.list | tr -s ' \t\n' '   ') "
-for name in $stubs; do
-    grep -q "^@@ $name\$" tools/starter/stubs.txt ||
-        { echo "tools/starter/stubs.list: no stub named $name (tools/starter/stubs.txt)" >&2 && exit 2; }
-done
+# stubs.list (or STUBS_LIST): step names (each exactly one of stubs.txt's sections), `#`
+# comments, and at most one line `hints formula|steps|none` (HINTS=... overrides it): how much
+# the stubs' comments say (stubs.txt). Anything else is refused, naming the line.
+list=${STUBS_LIST:-tools/starter/stubs.list}
+steps=$(sed -n 's/^@@ //p' tools/starter/stubs.txt | grep -v '^kit-' | tr '\n' ' ')
+parsed=$(awk -v steps=" $steps" -v file="$list" '
+    { sub(/\r$/, ""); sub(/#.*/, "") }
+    NF == 0 { next }
+    $1 == "hints" {
+        if (NF != 2 || $2 !~ /^(formula|steps|none)$/) {
+            print file ":" NR ": `hints formula`, `hints steps` or `hints none`" > "/dev/stderr"; bad = 1
+        }
+        hints = $2; next
+    }
+    {
+        for (i = 1; i <= NF; i++)
+            if (index(steps " ", " " $i " ") == 0) {
+                print file ":" NR ": no step named \"" $i "\" (the steps:" steps ")" > "/dev/stderr"; bad = 1
+            } else list = list " " $i
+    }
+    END { if (bad) exit 2; print (hints == "" ? "formula" : hints) list }
+' "$list") || exit 2
+hints=${HINTS:-${parsed%% *}}
+case $hints in formula | steps | none) ;; *) echo "HINTS=$hints: formula, steps or none" >&2 && exit 2 ;; esac
+stubs=" ${parsed#* } "
+[ "$parsed" = "${parsed#* }" ] && stubs=" "
 rm -rf "$kit"
 mkdir -p "$kit/app" "$kit/tests" "$kit/scenes"
+case $stubs in *" plane "*) case $stubs in *" cramer "*) plane=0 ;; *) plane=1 ;; esac ;; *) plane=0 ;; esac
 region() {
-    awk -v stubs="$stubs" -v solved=$solved -v wings=$wings -f tools/starter/regions.awk \
+    awk -v stubs="$stubs" -v solved=$solved -v wings=$wings -v hints="$hints" -v plane=$plane \
+        -f tools/starter/regions.awk \
         tools/starter/stubs.txt "$1" >"$kit/$1"
 }
 for file in ray.h ray.cpp camera.cpp geometry.cpp shade.cpp smooth.cpp render.cpp render.h path.cpp \
-    path_sampling.h numbers.h scene_*.cpp app/*.h app/*.cpp tests/test.h tests/test_handout.cpp \
-    tests/kit_main.cpp; do
+    path_sampling.h numbers.h scene_*.cpp app/*.h app/*.cpp tests/test.h tests/test_handout.h tests/test_handout.cpp \
+    tests/test_handout_light.cpp tests/kit_main.cpp; do
     region "$file"
 done
 if [ $wings = 1 ]; then
@@ -42,7 +65,8 @@ if [ $wings = 1 ]; then
     cp robust/*.cpp robust/*.h "$kit/robust/" && cp fast/*.cpp fast/*.h "$kit/fast/"
 fi
 cp scenes/*.scene scenes/*.obj "$kit/scenes/"
-cp tools/starter/Makefile tools/starter/README.md tools/starter/stubs.list .clang-format LICENSE "$kit/"
+cp tools/starter/Makefile tools/starter/README.md .clang-format LICENSE "$kit/"
+tr -d '\r' <"$list" >"$kit/stubs.list"
 
 # What a student checks an image against: rt's image of each bundled scene under the handouts'
 # methods (made by `make starter`), and the grader with the public grading scenes (seed 0).

@@ -152,7 +152,7 @@ static bool HitTriangle(const Shape *s, const Scene *scene, V o, V d, double tMi
     Bug bug = scene->bug;
     bool inside = scene->plane || bug == PLANE_AXIS || bug == PLANE_ORDER ? PlaneTest(s, bug, o, d, &t)
                                                                           : Cramer(s, bug, o, d, &t);
-    if (!inside || !(bug == TRIANGLE_TMIN ? t >= 0 && t < tMax : t > tMin && t < tMax))
+    if (!inside || !(bug == TRIANGLE_TMIN ? t > 0 && t < tMax : t > tMin && t < tMax))
         return false;
     hit->t = t, hit->point = o + t * d, hit->normal = Unit(Cross(s->b - s->a, s->c - s->a));
     return true;
