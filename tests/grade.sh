@@ -58,7 +58,8 @@ for seed in ${SEEDS:-0 1}; do
         done
     done
 done
-set=$work/set-0
+set=$work/set-0 # (the public scenes, for what follows)
+[ -d "$set" ] || build/grade-set "$set" --steps "$steps" --tiny build/tiny
 [ "$(ls scenes/grade | sed 's/\.scene$//' | sort)" = "$(sed 's/ .*//' "$set/scenes.txt" | sort)" ]
 check $? "scenes/grade holds the public scenes, one file each"
 for scene in $(sed 's/ .*//' "$set/scenes.txt"); do

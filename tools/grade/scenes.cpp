@@ -6,6 +6,7 @@
 
 #include <cstdarg>
 #include <cstdint>
+#include <cmath>
 #include <cstdio>
 
 // A random number source as small as a scene needs (splitmix64, Steele, Lea and Flood 2014).
@@ -286,12 +287,18 @@ static GradingScene Phong(Rng *r) {
            "# sits where R, the light's mirror direction, meets V, toward the eye, and is gone\n"
            "# where the light is hidden.\n",
            64, 64, "phong", 0.1);
-    Line(&t, "light 0 %.4g 0", Vary(r, 6, 0.5));
+    // The highlight is where N halves the way to the light and to the eye; the dark ball sits
+    // 40% of the way from there to the light, a little to the side, so it hides half of it.
+    double ly = Vary(r, 6, 0.5), toLight = std::sqrt(ly * ly + 36);
+    double nx = 0, ny = ly / toLight, nz = 6 / toLight + 1, n = std::sqrt(ny * ny + nz * nz);
+    double px = 2 * nx / n, py = 2 * ny / n, pz = -6 + 2 * nz / n;
+    Line(&t, "light 0 %.4g 0", ly);
     Line(&t, "material shiny diffuse %.3g 0.15 %.3g specular 0.35 %.4g", Vary(r, 0.5, 0.05),
-         Vary(r, 0.15, 0.05), Vary(r, 30, 5));
+         Vary(r, 0.15, 0.05), Vary(r, 10, 2));
     Line(&t, "material dark diffuse 0.2 0.2 0.2");
     Line(&t, "sphere 0 0 -6  2  shiny");
-    Line(&t, "sphere %.4g 2.86 -2.49  0.3  dark", Vary(r, 0.25, 0.05));
+    Line(&t, "sphere %.4g %.4g %.4g  0.3  dark", px + Vary(r, 0.25, 0.05), py + 0.4 * (ly - py),
+         pz + 0.4 * (0 - pz));
     return {"phong", t.s};
 }
 
