@@ -19,6 +19,7 @@ struct TriangleCase {
     bool frontFace;
 };
 
+// clang-format off: one case a line (name, ray, triangle, hit?, t, front face)
 static const TriangleCase kTriangleCases[] = {
     // From the eye straight at (0, 0.5, -2): inside, t = 2, seen from the outward side
     {"inside", {{0, 0.5, 0}, {0, 0, -1}}, &kTri, true, 2, true},
@@ -26,18 +27,8 @@ static const TriangleCase kTriangleCases[] = {
     {"inside, long direction", {{0, 0.5, 0}, {0, 0, -4}}, &kTri, true, 0.5, true},
     // |d| = 1e-8 and 1e8: t = 2e8 and 2e-8 (a regression: the conservative-t bound once mixed
     // z before and after scaling by 1 / d.z, and rejected every hit of a short direction)
-    {"inside, direction of length 1e-8",
-     {{0, 0.5, 0}, {0, 0, real(-1e-8)}},
-     &kTri,
-     true,
-     real(2e8),
-     true},
-    {"inside, direction of length 1e8",
-     {{0, 0.5, 0}, {0, 0, real(-1e8)}},
-     &kTri,
-     true,
-     real(2e-8),
-     true},
+    {"inside, direction of length 1e-8", {{0, 0.5, 0}, {0, 0, real(-1e-8)}}, &kTri, true, real(2e8), true},
+    {"inside, direction of length 1e8", {{0, 0.5, 0}, {0, 0, real(-1e8)}}, &kTri, true, real(2e-8), true},
     // Slanted: d = (0.125, 0.125, -1) reaches z = -2 at t = 2, at (0.25, 0.25), inside
     {"inside, slanted", {{0, 0, 0}, {0.125, 0.125, -1}}, &kTri, true, 2, true},
     // Outside past edge a-c (x + y = 1): the point (0.6, 0.6)
@@ -55,6 +46,7 @@ static const TriangleCase kTriangleCases[] = {
     // The triangle is behind the ray (t = -2)
     {"triangle behind the ray", {{0, 0.5, 0}, {0, 0, 1}}, &kTri, false, 0, false},
 };
+// clang-format on
 
 typedef bool (*IntersectFn)(const Triangle *, const Ray *, real, real, RayHit *);
 
