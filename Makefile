@@ -165,6 +165,11 @@ build/references/%.png: scenes/%.scene ray
 	@mkdir -p $(@D)
 	./ray $< --methods handout -o $@ >/dev/null
 
+# The reading edition: build/reading/, the core without wings, every step solved, the handouts'
+# methods only, building on its own (tools/starter/READING.md is its README).
+reading:
+	@sh tools/starter.sh build/reading --reading
+
 starter: ray build/tiny build/grade-set $(REFERENCES)
 	@HINTS="$(HINTS)" SEED="$(SEED)" sh tools/starter.sh build/starter
 
@@ -209,6 +214,6 @@ bench-publish:
 clean:
 	rm -rf build ray ray_float
 
-.PHONY: all test check check-core starter grade sanitize fuzz bench bench-publish clean
+.PHONY: all test check check-core starter reading grade sanitize fuzz bench bench-publish clean
 
 -include $(wildcard build/*/*.d build/*/*/*.d build/*/*/*/*.d)

@@ -105,6 +105,15 @@ while read -r command; do
     check $? "the workflow's \`$command\` passes in a solved kit"
 done <"$work/commands"
 
+# make reading: the reading edition is the solved kit's code (which the checks above built, ran
+# and drew byte for byte), without the kit's grader, references and workflow
+sh tools/starter.sh "$work/reading" --reading >/dev/null
+diff -r -x README.md -x stubs.list -x grade -x references -x .github -x build -x 'build.log' \
+    -x ray -x '*.png' "$work/solved/rt-starter" "$work/reading" >"$work/reading.diff"
+check $? "the reading edition is the solved kit's code: $(head -5 "$work/reading.diff")"
+[ ! -e "$work/reading/grade" ] && grep -q "reading edition" "$work/reading/README.md"
+check $? "the reading edition has its own README and no grader"
+
 # Each classic bug written into a solved kit (tests/kit_bugs.txt) fails a check of its own step
 # with that step's advice, and no check of an earlier step; and the grader names it on its scene.
 all="get-ray normals sphere cramer plane nearest-hit shadow floor reflect depth phong refraction clamp"

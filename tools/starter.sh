@@ -7,20 +7,24 @@
 # `// starter: end` (tools/starter/regions.awk). The kit is made from the very code rt tests.
 # --solved keeps rt's bodies in place of the stubs (the kit's checks must then all pass), and
 # writes no Gradescope bundle.
+# --reading writes the reading edition into DIR itself (`make reading`): solved, every step's
+# checks, no grader, no bundle.
 # --with-wings keeps robust/ and fast/ (for a teacher who asks for them): the kit then runs rt's
 # robust methods by default, and the handouts' under --methods handout.
 set -eu
 out=$1
 shift
-solved=0 wings=0
+solved=0 wings=0 reading=0
 for option in "$@"; do
     case $option in
     --solved) solved=1 ;;
+    --reading) solved=1 reading=1 ;;
     --with-wings) wings=1 ;;
     *) echo "tools/starter.sh: unknown option $option" >&2 && exit 2 ;;
     esac
 done
 kit=$out/rt-starter
+[ $reading = 1 ] && kit=$out
 # stubs.list (or STUBS_LIST): step names (each exactly one of stubs.txt's sections), `#`
 # comments, and at most one line `hints formula|steps|none` (HINTS=... overrides it): how much
 # the stubs' comments say (stubs.txt). Anything else is refused, naming the line.
@@ -67,6 +71,12 @@ fi
 cp scenes/*.scene scenes/*.obj "$kit/scenes/"
 cp tools/starter/Makefile tools/starter/README.md .clang-format LICENSE "$kit/"
 tr -d '\r' <"$list" >"$kit/stubs.list"
+if [ $reading = 1 ]; then # (every step's checks, no grader, no bundle)
+    cp tools/starter/READING.md "$kit/README.md"
+    echo "$steps" | tr ' ' '\n' | sed '/^$/d' >"$kit/stubs.list"
+    echo "$kit/: the reading edition, every step solved, without robust/ and fast/"
+    exit 0
+fi
 
 # What a student checks an image against: rt's image of each bundled scene under the handouts'
 # methods (made by `make starter`), and the grader with the public grading scenes (seed 0).
