@@ -48,6 +48,8 @@ static void AddStats(const RayStats *from, RayStats *to) {
     to->specularTerms += from->specularTerms;
     to->diffuse += from->diffuse;
     to->primaryHits += from->primaryHits;
+    to->defocus += from->defocus;
+    to->fuzz += from->fuzz;
 }
 
 // Cell s of n inside the unit pixel, on a regular grid that holds exactly n cells: `rows` =
@@ -119,7 +121,8 @@ static vec2 JitterPosition(int i, int j, const GridCell *cell, int s, int stream
 static color TraceSample(const Scene *scene, const RenderSettings *settings, vec2 position, int i,
                          int j, int s, TraceLog *log) {
     Ray ray;
-    GetCameraRay(&settings->camera, settings->width, settings->height, position, &ray);
+    GetSampleRay(settings, position, i, j, s, &ray, &log->stats); // (blur.cpp: a lens, fuzz)
+    StartSample(settings, i, j, s, log);
     if (scene->shading == SHADING_PATH)
         return TracePath(scene, settings, &ray, i, j, s, log);
     return TraceRay(scene, settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, log);
@@ -135,13 +138,15 @@ static void AddSamples(const Scene *scene, const RenderSettings *settings, const
     RayHit hits[kEyeRaysTogether];
     bool found[kEyeRaysTogether];
     for (int k = 0; k < count; k++)
-        GetCameraRay(&settings->camera, settings->width, settings->height, positions[k], &rays[k]);
+        GetSampleRay(settings, positions[k], i, j, first + k, &rays[k], &log->stats);
     FindEyeRayHits(scene, settings->methods, rays, count, hits, found);
-    for (int k = 0; k < count; k++)
+    for (int k = 0; k < count; k++) {
+        StartSample(settings, i, j, first + k, log);
         *sum = *sum + (scene->shading == SHADING_PATH
                            ? TraceFoundPath(scene, settings, &rays[k], found[k], &hits[k], i, j,
                                             first + k, log)
                            : TraceFoundEyeRay(scene, settings, &rays[k], found[k], &hits[k], log));
+    }
 }
 
 // Whether samples differ, in any channel clamped to [0, 1], by more than kAdaptiveContrast.

@@ -117,6 +117,8 @@ static const struct {
     {"smooth", TestSmooth},
     {"leaks", TestLeaks},
     {"handout", TestHandout},
+    {"lens", TestLens},
+    {"fuzz", TestFuzz},
     {"probes", TestProbes},
     {"program", TestProgram},
     {"corpus", TestCorpus},
