@@ -1,11 +1,14 @@
-// blur.cpp -- Ray Tracing in One Weekend's two blurs beyond the handouts, and the random numbers
-// they draw for each pixel sample outside path tracing: defocus (a camera's thin lens, whose ray
-// geometry is camera.cpp's GetLensRay) and fuzzy reflection (a mirror's `fuzz`, FuzzReflect in
-// render.h). Neither costs anything in a scene without it: the render asks here only when the
-// scene has a lens or a fuzzy mirror (Effects). The numbers come from a hash of the pixel, the
-// sample and the seed, so the image never depends on the thread count.
+// blur.cpp -- the random numbers of Ray Tracing in One Weekend's two blurs beyond the handouts,
+// outside path tracing: the point of a camera's thin lens each eye ray starts from (defocus; the
+// ray itself is camera.cpp's GetLensRay), and a fuzzy mirror's direction under `floor` and
+// `phong` (fuzz; the direction itself is render.h's FuzzReflect). Neither costs anything in a
+// scene without it: the camera asks here only when it has a lens, the shading only when a mirror
+// has fuzz. The numbers are hashes of what they belong to (the sample's place on the screen, the
+// ray that meets the mirror) and the seed, so the image never depends on the thread count.
 #include "ray.h"
 #include "render.h"
+
+#include <cstring>
 
 // A uniform point of the unit disk from the hash `key`: points of the square [-1, 1)^2, from
 // pairs of 24-bit numbers of the hashes of (key, try), until one falls inside (the book's
@@ -24,36 +27,31 @@ static vec2 HashDiskPoint(uint64_t key) {
     return {0, 0};
 }
 
-// The key of sample s of pixel (i, j) under the render's seed, with a word of its own for each
-// use ("lens", "fuzz"), so that neither repeats the other's numbers or the path tracer's.
-static uint64_t SampleKey(uint64_t use, const RenderSettings *settings, int i, int j, int s) {
-    uint64_t z = use;
-    for (uint64_t word : {(uint64_t)settings->path.seed, (uint64_t)i, (uint64_t)j, (uint64_t)s})
-        z = MixWord(z, word);
-    return z;
+// The bits of a number, as a word to hash (a float's 32 bits, a double's 64).
+static uint64_t Bits(real x) {
+    uint64_t word = 0;
+    memcpy(&word, &x, sizeof x);
+    return word;
 }
 
-void GetSampleRay(const RenderSettings *settings, vec2 position, int i, int j, int s, Ray *ray,
-                  RayStats *stats) {
-    const Camera *camera = &settings->camera;
-    if (!settings->effects.defocus) {
-        GetCameraRay(camera, settings->width, settings->height, position, ray);
-        return;
-    }
-    vec2 lens = HashDiskPoint(SampleKey(0x6c656e73, settings, i, j, s)); // "lens"
-    GetLensRay(camera, settings->width, settings->height, position, lens, ray);
-    stats->defocus++;
+// Each use has a word of its own ("lens", "fuzz") mixed in first, so that neither repeats the
+// other's numbers or the path tracer's. A sample's place on the screen names it: samples of one
+// pixel lie at different places, and so do those of different pixels (the grid's, the jitter's),
+// and where two coincide (an adaptive pixel's corner, shared with its neighbour) they are one ray.
+void GetLensCameraRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray) {
+    uint64_t key = MixWord(0x6c656e73, (uint64_t)camera->seed); // "lens"
+    key = MixWord(MixWord(key, Bits(screenCoord.x)), Bits(screenCoord.y));
+    GetLensRay(camera, width, height, screenCoord, HashDiskPoint(key), ray);
 }
 
-void StartSample(const RenderSettings *settings, int i, int j, int s, TraceLog *log) {
-    if (settings->effects.fuzz)
-        log->sample = SampleKey(0x66757a7a, settings, i, j, s), log->draws = 0; // "fuzz"
-}
-
-// Each fuzzy reflection of the sample draws the next point: a chain that meets two fuzzy mirrors,
-// or glass that splits it, takes a fresh point at each, in the order the rays are traced.
-bool FuzzyMirror(real fuzz, vec3 d, vec3 n, TraceLog *log, vec3 *dir) {
-    log->stats.fuzz++;
-    vec3 unit = RandomUnitVector(HashDiskPoint(MixWord(log->sample, log->draws++)));
-    return FuzzReflect(SafeNormalize(d), n, fuzz, unit, dir);
+// A ray names its fuzzy reflection: the samples of a pixel send different rays, and so does
+// every branch of a sample's tree (a chain that meets two fuzzy mirrors, glass that splits it),
+// so each draws a point of its own; a ray that two samples share is the same ray, which reflects
+// the same way.
+bool FuzzyMirror(real fuzz, const Ray *ray, vec3 n, int seed, vec3 *dir) {
+    uint64_t key = MixWord(0x66757a7a, (uint64_t)seed); // "fuzz"
+    for (real x : {ray->origin.x, ray->origin.y, ray->origin.z, ray->dir.x, ray->dir.y, ray->dir.z})
+        key = MixWord(key, Bits(x));
+    vec3 unit = RandomUnitVector(HashDiskPoint(key));
+    return FuzzReflect(SafeNormalize(ray->dir), n, fuzz, unit, dir);
 }

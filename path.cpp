@@ -80,7 +80,6 @@ static bool MirrorOrGlass(const Path *path, const Ray *in, const RayHit *hit, co
     *kind = RAY_REFLECTION;
     if (pick < m->mirror) {
         vec2 disk = m->fuzz > 0 ? DiskPoint(&path->sample, path->bounce, SCATTER_DISK) : vec2{};
-        path->log->stats.fuzz += m->fuzz > 0;
         if (m->fuzz > 0 && !FuzzReflect(d, n, m->fuzz, RandomUnitVector(disk), &dir))
             return false;
         LeaveSurface(scene, hit, dir, methods, out, from);

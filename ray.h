@@ -78,6 +78,7 @@ struct Camera {
     real focusDistance = 1;
     vec3 lensU = {0, 0, 0}, lensV = {0, 0, 0}; // the disk's two radii, right and up (set by
                                                // LookAtToScreen)
+    int seed = 0; // the render's --seed, which the lens's random points depend on (PlanRender)
 };
 
 enum ShapeKind { SHAPE_SPHERE, SHAPE_TRIANGLE };
@@ -252,7 +253,8 @@ void GetRay(Perspective p, vec2 screenCoord, Ray *ray);
 // the bottom). ray->dir is not normalised.
 void GetScreenRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray);
 
-// The one way every pixel's ray is made: through GetRay or GetScreenRay, per camera kind.
+// The one way every pixel's ray is made: through GetRay or GetScreenRay, per camera kind; for a
+// camera with a lens, through GetLensRay (GetLensCameraRay).
 void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray);
 
 // A `camera lookat` in the screen form for a W x H image, the screen one unit in front of the
@@ -266,6 +268,11 @@ bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen,
 // disk, scaled by the lens's radii) through screenCoord's point on the plane in focus, which it
 // reaches at t = 1. (From the lens's centre, the pinhole's GetScreenRay scaled to that plane.)
 void GetLensRay(const Camera *camera, int width, int height, vec2 screenCoord, vec2 lens, Ray *ray);
+
+// GetCameraRay for a camera with a lens: GetLensRay from a random point of the lens, a hash of
+// screenCoord and camera->seed, so that every sample of every pixel has a point of its own
+// (blur.cpp).
+void GetLensCameraRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray);
 
 // ---- geometry.cpp: where rays meet shapes ----------------------------------------------------
 

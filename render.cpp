@@ -48,8 +48,6 @@ static void AddStats(const RayStats *from, RayStats *to) {
     to->specularTerms += from->specularTerms;
     to->diffuse += from->diffuse;
     to->primaryHits += from->primaryHits;
-    to->defocus += from->defocus;
-    to->fuzz += from->fuzz;
 }
 
 // Cell s of n inside the unit pixel, on a regular grid that holds exactly n cells: `rows` =
@@ -121,8 +119,7 @@ static vec2 JitterPosition(int i, int j, const GridCell *cell, int s, int stream
 static color TraceSample(const Scene *scene, const RenderSettings *settings, vec2 position, int i,
                          int j, int s, TraceLog *log) {
     Ray ray;
-    GetSampleRay(settings, position, i, j, s, &ray, &log->stats); // (blur.cpp: a lens, fuzz)
-    StartSample(settings, i, j, s, log);
+    GetCameraRay(&settings->camera, settings->width, settings->height, position, &ray);
     if (scene->shading == SHADING_PATH)
         return TracePath(scene, settings, &ray, i, j, s, log);
     return TraceRay(scene, settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, log);
@@ -138,15 +135,13 @@ static void AddSamples(const Scene *scene, const RenderSettings *settings, const
     RayHit hits[kEyeRaysTogether];
     bool found[kEyeRaysTogether];
     for (int k = 0; k < count; k++)
-        GetSampleRay(settings, positions[k], i, j, first + k, &rays[k], &log->stats);
+        GetCameraRay(&settings->camera, settings->width, settings->height, positions[k], &rays[k]);
     FindEyeRayHits(scene, settings->methods, rays, count, hits, found);
-    for (int k = 0; k < count; k++) {
-        StartSample(settings, i, j, first + k, log);
+    for (int k = 0; k < count; k++)
         *sum = *sum + (scene->shading == SHADING_PATH
                            ? TraceFoundPath(scene, settings, &rays[k], found[k], &hits[k], i, j,
                                             first + k, log)
                            : TraceFoundEyeRay(scene, settings, &rays[k], found[k], &hits[k], log));
-    }
 }
 
 // Whether samples differ, in any channel clamped to [0, 1], by more than kAdaptiveContrast.
@@ -290,6 +285,7 @@ void PlanRender(const Scene *scene, RenderSettings *settings) {
         LookAtToScreen(&scene->camera, settings->width, settings->height, &settings->camera,
                        &unused);
     settings->camera.fromScreen = settings->methods.cameraRay == CAMERA_RAY_SLIDES;
+    settings->camera.seed = settings->path.seed;
 }
 
 color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int j,

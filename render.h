@@ -135,8 +135,6 @@ struct RayStats {
     uint64_t specularTerms;
     uint64_t diffuse;     // rays scattered by diffuse surfaces (`shading path`)
     uint64_t primaryHits; // primary rays that met a shape (none: main warns)
-    uint64_t defocus;     // eye rays started on a lens (blur.cpp)
-    uint64_t fuzz;        // mirror directions drawn from a fuzz sphere (blur.cpp, path.cpp)
 };
 
 // One ray of a traced ray tree (`--pixel`): what it was, what it hit, the colour it brought
@@ -156,9 +154,7 @@ struct TraceLog {
     RayStats stats;
     std::vector<RayNode> *tree;
     int current;
-    uint64_t surfaces;   // a hash of every shape the rays met (adaptive sampling compares them)
-    uint64_t sample = 0; // which pixel sample is traced, hashed: a fuzzy mirror's random numbers
-    uint64_t draws = 0;  // come from it and how many it has drawn (StartSample, blur.cpp)
+    uint64_t surfaces; // a hash of every shape the rays met (adaptive sampling compares them)
 };
 
 // ---- shade.cpp: lighting and the ray chain ---------------------------------------------------
@@ -286,21 +282,12 @@ void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters);
 // squared distance, stays in the range of numbers at every scale.
 real EmitterSqrtArea(const Scene *scene, const Emitter *e);
 
-// ---- blur.cpp: the lens and the fuzz, a pixel sample's random numbers beyond path tracing ---
+// ---- blur.cpp: the fuzz of a mirror under `floor` and `phong` --------------------------------
 
-// The eye ray of sample s of pixel (i, j) through `position` (in pixels): GetCameraRay's; with a
-// lens (Effects), from a random point of the lens disk that depends on the pixel, the sample and
-// the seed (GetLensRay), counted in stats->defocus.
-void GetSampleRay(const RenderSettings *settings, vec2 position, int i, int j, int s, Ray *ray,
-                  RayStats *stats);
-
-// Before tracing sample s of pixel (i, j) under `floor` or `phong`: the key of the fuzzy mirrors'
-// random numbers, so that each sample reflects along directions of its own.
-void StartSample(const RenderSettings *settings, int i, int j, int s, TraceLog *log);
-
-// A fuzzy mirror's direction for a ray arriving along d at a hit with unit normal n, drawn for
-// the sample being traced (FuzzReflect, from log's key): false where it points into the surface.
-bool FuzzyMirror(real fuzz, vec3 d, vec3 n, TraceLog *log, vec3 *dir);
+// A fuzzy mirror's direction for `ray` arriving at a hit with unit normal n (FuzzReflect), from a
+// random point that is a hash of the ray and the seed: every sample of a pixel, every ray of its
+// tree, reflects along a direction of its own. False where it points into the surface.
+bool FuzzyMirror(real fuzz, const Ray *ray, vec3 n, int seed, vec3 *dir);
 
 // ---- render.cpp: the render loop -------------------------------------------------------------
 

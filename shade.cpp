@@ -249,15 +249,15 @@ static color SurfaceColor(const Shading *sh, const Surface *s) {
 
 // The mirror image of `mirror K`: the reflected ray's colour, times the mirror's tint. A fuzzy
 // mirror (Ray Tracing in One Weekend's metal) reflects along a direction drawn from its fuzz
-// sphere, another for each sample of the pixel (FuzzyMirror, blur.cpp), so that the pixel's
-// samples average the spread reflection; one that points into the surface is absorbed, as the
-// book's metal absorbs it, and brings back black.
+// sphere, another for each ray that meets it, so for each sample of the pixel (FuzzyMirror,
+// blur.cpp): the pixel's samples average the spread reflection. One that points into the surface
+// is absorbed, as the book's metal absorbs it, and brings back black.
 static color MirrorColor(const Shading *sh, const Surface *s, real k) {
     vec3 dir = Reflect(s->ray->dir, s->hit->normal);
-    if (s->m->fuzz > 0 && !FuzzyMirror(s->m->fuzz, s->ray->dir, s->hit->normal, sh->log, &dir))
+    if (s->m->fuzz > 0 &&
+        !FuzzyMirror(s->m->fuzz, s->ray, s->hit->normal, sh->settings->path.seed, &dir))
         return {0, 0, 0};
-    color tint = s->m->tint;
-    return tint * FollowRay(sh, s, RAY_REFLECTION, dir, k * MaxComponent(tint));
+    return s->m->tint * FollowRay(sh, s, RAY_REFLECTION, dir, k);
 }
 
 // Mixes the surface's colour with the mirror image: (1 - K) own + K reflected for `mirror K`.

@@ -213,9 +213,14 @@ void PrintStats(const RayStats *s, const RenderSettings *settings, int threads,
     std::string effects;
     const char *names[] = {" shadows",  " reflection",   " refraction", " specular",
                            " indirect", " antialiasing", " defocus",    " fuzz"};
-    bool used[] = {s->shadow > 0,        s->reflection > 0, s->refraction > 0,
-                   s->specularTerms > 0, s->diffuse > 0,    settings->samplesPerPixel > 1,
-                   s->defocus > 0,       s->fuzz > 0};
+    bool used[] = {s->shadow > 0,
+                   s->reflection > 0,
+                   s->refraction > 0,
+                   s->specularTerms > 0,
+                   s->diffuse > 0,
+                   settings->samplesPerPixel > 1,
+                   settings->effects.defocus && s->primary > 0, // (every eye ray, on the lens)
+                   settings->effects.fuzz && s->reflection > 0};
     for (int k = 0; k < 8; k++)
         if (used[k])
             effects += names[k];

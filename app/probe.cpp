@@ -156,9 +156,9 @@ static std::string NodeJson(const Scene *scene, const std::vector<RayNode> &tree
 std::string PixelTreeJson(const Scene *scene, const RenderSettings *settings, int x, int y) {
     std::vector<RayNode> tree;
     TraceLog log = {RayStats{}, &tree, -1, 0};
-    Ray ray; // (sample 0 of one, as a render at one sample traces it: a lens's point, fuzz)
-    GetSampleRay(settings, SamplePosition(x, y, 0, 1), x, y, 0, &ray, &log.stats);
-    StartSample(settings, x, y, 0, &log);
+    Ray ray;
+    GetCameraRay(&settings->camera, settings->width, settings->height, SamplePosition(x, y, 0, 1),
+                 &ray);
     if (scene->shading == SHADING_PATH) // the centre's first path (sample 0)
         TracePath(scene, settings, &ray, x, y, 0, &log);
     else
