@@ -36,7 +36,7 @@ PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 # The teaching core at the top (every scene_*.cpp is a scene built in C++: README, "Writing a
 # scene in C++"), and the three wings: robust/, fast/ and app/.
 SCENES = $(basename $(wildcard scene_*.cpp))
-TOP = geometry camera shade path render smooth $(SCENES)
+TOP = geometry camera blur shade path render smooth $(SCENES)
 ROBUST = robust/watertight robust/plane robust/rescale robust/leave
 FAST = fast/commit fast/build fast/kernel fast/commit_spheres
 APP = app/options app/modes app/image app/image_read app/text app/scene_file app/statements \
@@ -154,7 +154,8 @@ build/student: bench/student.cpp
 build/peer_embree: build/double/bench/peer_embree.o $(DOUBLE_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS) -lembree3
 
-bench: ray ray_float build/double/rtbench build/float/rtbench build/student build/make_mesh
+bench: ray ray_float build/double/rtbench build/float/rtbench build/student build/make_mesh \
+       build/weekend_scene
 	@sh bench/bench.sh
 
 # The student kit: build/starter/rt-starter and build/starter/rt-starter.tar.gz, rt's teaching core
@@ -200,6 +201,12 @@ grade: ray build/tiny build/grader build/grade-set
 # The mesh generator (tools/make_mesh.cpp), for trying the `mesh` statement on large models:
 # `make build/make_mesh`. Not part of `make`: rt does not need it.
 build/make_mesh: tools/make_mesh.cpp
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $<
+
+# The writer of scenes/weekend.scene (tools/weekend_scene.cpp): Ray Tracing in One Weekend's final
+# scene with the book's random numbers; make bench also checks it against the book's program.
+build/weekend_scene: tools/weekend_scene.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $<
 

@@ -37,6 +37,8 @@ void GetScreenRay(const Camera *camera, int width, int height, vec2 screenCoord,
 // eye -> pixel (the second handout's form): t = 1 is then the screen, and a shape between the eye
 // and the screen is still seen.
 void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray) {
+    if (camera->lensRadius > 0) // beyond the handouts: the book's thin lens (GetLensRay, below)
+        return GetLensCameraRay(camera, width, height, screenCoord, ray);
     if (camera->kind == CAMERA_PERSPECTIVE)
         GetRay(camera->perspective, screenCoord, ray);
     else
@@ -51,7 +53,8 @@ void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord,
 // screen stands one unit in front of the eye, tan(fov / 2) high above the centre, and as wide as
 // the image's aspect ratio makes it (square pixels). Every vector is normalised after rescaling
 // (SafeNormalize), so a camera 1e200 from its target works, and the corner is kept relative to
-// the eye (toCorner), so a camera 1e30 from the origin does too.
+// the eye (toCorner), so a camera 1e30 from the origin does too. The lens disk lies in the plane
+// of u and v, as the book's defocus_disk_u and defocus_disk_v.
 bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen,
                     std::string *error) {
     vec3 w = SafeNormalize(lookAt->from - lookAt->to);
@@ -78,5 +81,26 @@ bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen,
     screen->lowerLeft = lookAt->from + screen->toCorner;
     screen->horizontal = (2 * halfWidth) * u;
     screen->vertical = (2 * halfHeight) * v;
+    screen->lensU = lookAt->lensRadius * u;
+    screen->lensV = lookAt->lensRadius * v;
     return true;
+}
+
+// Ray Tracing in One Weekend's thin lens (§13, Defocus Blur): a ray starts at a point of the lens
+// disk and goes through the pixel's point on the plane in focus, so all the rays of a point of
+// that plane meet there, and a point nearer or farther is spread over a disk (the circle of
+// confusion). The pinhole's direction d reaches the screen, one unit in front of the eye, at
+// t = 1; the plane in focus is focusDistance in front, at eye + focusDistance d. From the lens
+// point eye + offset, the direction is that point minus the offset, built from the eye outward
+// (as every direction here) so that no coordinate of the eye's position enters it.
+void GetLensRay(const Camera *camera, int width, int height, vec2 screenCoord, vec2 lens,
+                Ray *ray) {
+    GetScreenRay(camera, width, height, screenCoord, ray);
+    vec3 offset = lens.x * camera->lensU + lens.y * camera->lensV;
+    ray->origin = ray->origin + offset;
+    ray->dir = camera->focusDistance * ray->dir - offset;
+    if (camera->fromScreen) { // the slides' ray starts on the screen, one unit in front of the lens
+        ray->origin = ray->origin + (1 / camera->focusDistance) * ray->dir;
+        ray->dir = SafeNormalize(ray->dir);
+    }
 }

@@ -69,14 +69,21 @@ static real Random(const Path *path, Decision d) {
 // surface's shares: the mirror fraction K reflects; of the rest, glass reflects Fresnel's share R
 // and refracts the others (or reflects, under total internal reflection). Each choice is made
 // with the probability of its share, so the shares drop out of the estimate. Writes the ray that
-// leaves the surface (`out` may be `in`) and returns its kind.
-static RayKind MirrorOrGlass(const Scene *scene, const Ray *in, const RayHit *hit,
-                             const Material *m, real pick, const Methods *methods, Ray *out,
-                             SelfHit *from) {
-    vec3 d = SafeNormalize(in->dir), n = hit->normal;
+// leaves the surface (`out` may be `in`) and its kind; false where a fuzzy mirror's direction,
+// drawn from its fuzz sphere with the numbers a diffuse bounce would scatter with (a bounce that
+// reflects does not scatter), points into the surface: the book's metal absorbs it.
+static bool MirrorOrGlass(const Path *path, const Ray *in, const RayHit *hit, const Material *m,
+                          real pick, Ray *out, SelfHit *from, RayKind *kind) {
+    const Scene *scene = path->scene;
+    const Methods *methods = &path->settings->methods;
+    vec3 d = SafeNormalize(in->dir), n = hit->normal, dir = Reflect(d, n);
+    *kind = RAY_REFLECTION;
     if (pick < m->mirror) {
-        LeaveSurface(scene, hit, Reflect(d, n), methods, out, from);
-        return RAY_REFLECTION;
+        vec2 disk = m->fuzz > 0 ? DiskPoint(&path->sample, path->bounce, SCATTER_DISK) : vec2{};
+        if (m->fuzz > 0 && !FuzzReflect(d, n, m->fuzz, RandomUnitVector(disk), &dir))
+            return false;
+        LeaveSurface(scene, hit, dir, methods, out, from);
+        return true;
     }
     real eta = hit->frontFace ? 1 / m->ior : m->ior, cosI = -Dot(d, n);
     real reflectance = methods->fresnel == FRESNEL_SCHLICK ? SchlickReflectance(cosI, eta)
@@ -84,8 +91,9 @@ static RayKind MirrorOrGlass(const Scene *scene, const Ray *in, const RayHit *hi
     vec3 refracted;
     bool reflect = (pick - m->mirror) < reflectance * (1 - m->mirror) || // (the same number,
                    !Refract(d, n, eta, &refracted);                      // past K)
-    LeaveSurface(scene, hit, reflect ? Reflect(d, n) : refracted, methods, out, from);
-    return reflect ? RAY_REFLECTION : RAY_REFRACTION;
+    LeaveSurface(scene, hit, reflect ? dir : refracted, methods, out, from);
+    *kind = reflect ? RAY_REFLECTION : RAY_REFRACTION;
+    return true;
 }
 
 // ---- the journal's estimator -----------------------------------------------------------------
@@ -104,7 +112,7 @@ static color JournalColor(Path *path, const Ray *ray, const SelfHit *from, RayKi
 
 static color JournalShade(Path *path, const Ray *ray, bool found, const RayHit *hit, int number) {
     if (!found)
-        return path->scene->background;
+        return BackgroundColor(path->scene, ray->dir);
     const Material *m = &path->scene->materials[hit->material];
     if (number == path->settings->depth) // the next ray would be one too many: black
         return m->emit;
@@ -112,10 +120,12 @@ static color JournalShade(Path *path, const Ray *ray, bool found, const RayHit *
     real pick = Random(path, PICK_SURFACE);
     Ray next;
     SelfHit leaving;
-    if (pick < m->mirror || m->ior > 0) {
-        RayKind kind = MirrorOrGlass(path->scene, ray, hit, m, pick, &path->settings->methods,
-                                     &next, &leaving);
-        return m->emit + JournalColor(path, &next, &leaving, kind, number + 1);
+    if (pick < m->mirror || m->ior > 0) { // (a mirror's reflection is tinted; glass's is not)
+        RayKind kind;
+        if (!MirrorOrGlass(path, ray, hit, m, pick, &next, &leaving, &kind))
+            return m->emit;
+        color tint = pick < m->mirror ? m->tint : color{1, 1, 1};
+        return m->emit + tint * JournalColor(path, &next, &leaving, kind, number + 1);
     }
     if (!(MaxComponent(m->diffuse) > 0)) // black: what a ray would bring back counts for 0
         return m->emit;
@@ -340,10 +350,11 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     real pick = Random(path, PICK_SURFACE);
     path->scatterPdf = 0;
     if (pick < m->mirror || m->ior > 0) {
-        if (last)
+        if (last ||
+            !MirrorOrGlass(path, &path->ray, hit, m, pick, &path->ray, &path->from, &path->kind))
             return false;
-        path->kind = MirrorOrGlass(path->scene, &path->ray, hit, m, pick, &path->settings->methods,
-                                   &path->ray, &path->from);
+        if (pick < m->mirror) // (a mirror's reflection is tinted; glass's is not)
+            path->through = path->through * m->tint;
         return true;
     }
     color rho = m->diffuse;
@@ -441,7 +452,7 @@ static color FullPath(Path *path, bool foundFirst, const RayHit *firstHit) {
         if (node >= 0 && ((*log->tree)[node].hit = found))
             (*log->tree)[node].record = hit;
         if (!found) {
-            path->light = path->light + path->through * scene->background;
+            path->light = path->light + path->through * BackgroundColor(scene, path->ray.dir);
             break;
         }
         const Material *m = &scene->materials[hit.material];

@@ -114,18 +114,8 @@ static real PowerHeuristic(real a, real b) {
 
 // ---- emitters: the shapes whose material has `emit` (PlanEffects lists them) ---------------
 
-// A uniform random unit vector (the journal's random_unit_vector), from a uniform point (x, y)
-// of the unit disk: the height z = 1 - 2 r^2, uniform in (-1, 1] (Archimedes again), and the
-// rest (x, y) times 2 sqrt(1 - r^2), which makes its length 1 (Marsaglia, "Choosing a Point from
-// the Surface of a Sphere", 1972).
-static vec3 RandomUnitVector(vec2 disk) {
-    real r2 = disk.x * disk.x + disk.y * disk.y;
-    real stretch = 2 * std::sqrt(std::max(real(0), 1 - r2)); // (as in ScatterDirection)
-    return {stretch * disk.x, stretch * disk.y, 1 - 2 * r2};
-}
-
 // A point drawn uniformly over an emitting sphere, and the unit normal there: a random unit
-// vector from the centre.
+// vector from the centre (RandomUnitVector, render.h).
 static void SampleSphere(const Sphere *s, vec2 disk, vec3 *p, vec3 *n) {
     *n = RandomUnitVector(disk);
     *p = s->center + s->radius * *n;

@@ -70,6 +70,15 @@ struct Camera {
     real fovDegrees;         // CAMERA_LOOKAT: vertical field of view
     bool fromScreen;         // the slides' GetRay: rays start at the pixel on the screen, with
                              // unit length (set by PlanRender from the methods)
+    // CAMERA_LOOKAT's thin lens (Ray Tracing in One Weekend's defocus blur): rays start on a disk
+    // of radius lensRadius around the eye, across the view, and meet on the plane in focus,
+    // focusDistance in front of it (the book's focus_dist). A radius of 0 is the pinhole camera:
+    // every ray starts at the eye and everything is in focus.
+    real lensRadius = 0;
+    real focusDistance = 1;
+    vec3 lensU = {0, 0, 0}, lensV = {0, 0, 0}; // the disk's two radii, right and up (set by
+                                               // LookAtToScreen)
+    int seed = 0; // the render's --seed, which the lens's random points depend on (PlanRender)
 };
 
 enum ShapeKind { SHAPE_SPHERE, SHAPE_TRIANGLE };
@@ -121,6 +130,11 @@ struct Material {
     real mirror;    // fraction of the reflected ray's colour mixed in, 0..1
     real ior;       // index of refraction of glass; 0 for an opaque material
     color emit;     // radiance the surface gives off, on both sides (`shading path`; 0: none)
+    // Beyond the handouts, Ray Tracing in One Weekend's metal: a mirror's reflected light times
+    // `tint` (the book's albedo), along directions spread by `fuzz`, the radius of the fuzz sphere
+    // (0: the sharp mirror). With their defaults a mirror is the handouts' own.
+    real fuzz = 0;
+    color tint = {1, 1, 1};
 };
 
 struct Light {
@@ -155,8 +169,10 @@ struct Scene {
     Camera camera;
     ShadingModel shading;
     real ambient;     // the ambient intensity: the floor, or Phong's Ia
-    color background; // colour of a ray that hits nothing
-    int depth;        // most rays in one chain, primary included
+    color background; // colour of a ray that hits nothing (looking straight down, under a sky)
+    bool sky = false; // the book's sky: background blended with skyUp by the ray's height
+    color skyUp = {0, 0, 0}; // (BackgroundColor, render.h)
+    int depth;               // most rays in one chain, primary included
     std::vector<Material> materials;
     std::vector<Sphere> spheres;
     std::vector<Triangle> triangles;
@@ -237,14 +253,26 @@ void GetRay(Perspective p, vec2 screenCoord, Ray *ray);
 // the bottom). ray->dir is not normalised.
 void GetScreenRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray);
 
-// The one way every pixel's ray is made: through GetRay or GetScreenRay, per camera kind.
+// The one way every pixel's ray is made: through GetRay or GetScreenRay, per camera kind; for a
+// camera with a lens, through GetLensRay (GetLensCameraRay).
 void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray);
 
 // A `camera lookat` in the screen form for a W x H image, the screen one unit in front of the
-// eye. Returns false, with *error saying which, if from = to, up is along the view, or fov is not
-// in (0, 180).
+// eye, with its lens's radii. Returns false, with *error saying which, if from = to, up is along
+// the view, or fov is not in (0, 180).
 bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen,
                     std::string *error);
+
+// Beyond the handouts, Ray Tracing in One Weekend's thin lens, for a lookat camera in the screen
+// form (LookAtToScreen): the ray from the point `lens` of the lens disk (a point of the unit
+// disk, scaled by the lens's radii) through screenCoord's point on the plane in focus, which it
+// reaches at t = 1. (From the lens's centre, the pinhole's GetScreenRay scaled to that plane.)
+void GetLensRay(const Camera *camera, int width, int height, vec2 screenCoord, vec2 lens, Ray *ray);
+
+// GetCameraRay for a camera with a lens: GetLensRay from a random point of the lens, a hash of
+// screenCoord and camera->seed, so that every sample of every pixel has a point of its own
+// (blur.cpp).
+void GetLensCameraRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray);
 
 // ---- geometry.cpp: where rays meet shapes ----------------------------------------------------
 

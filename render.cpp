@@ -287,6 +287,7 @@ void PlanRender(const Scene *scene, RenderSettings *settings) {
         LookAtToScreen(&scene->camera, settings->width, settings->height, &settings->camera,
                        &unused);
     settings->camera.fromScreen = settings->methods.cameraRay == CAMERA_RAY_SLIDES;
+    settings->camera.seed = settings->path.seed;
 }
 
 color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int j,

@@ -5,6 +5,7 @@
 #pragma once
 #include "ray.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -33,6 +34,8 @@ struct Effects {
     std::vector<Emitter> emitters; // `shading path`: the shapes that emit, for next-event
                                    // estimation (path.cpp)
     color lightSum;                // every light's intensity added up
+    bool defocus = false;          // a camera with a lens: eye rays start on its disk (blur.cpp)
+    bool fuzz = false;             // a mirror with fuzz, and depth > 1
 };
 
 // Where a pixel's samples go (--aa).
@@ -206,6 +209,37 @@ void CloseRay(TraceLog *log, int node, bool found, const RayHit *hit, color ligh
 // The mirror direction of d about the unit normal n: r = d - 2 (d.n) n (the assignment handout)
 vec3 Reflect(vec3 d, vec3 n);
 
+// A uniform random unit vector (the journal's random_unit_vector), from a uniform point (x, y)
+// of the unit disk: the height z = 1 - 2 r^2, uniform in (-1, 1] (Archimedes: equal heights cut
+// equal areas from a sphere), and the rest (x, y) times 2 sqrt(1 - r^2), which makes its length 1
+// (Marsaglia, "Choosing a Point from the Surface of a Sphere", 1972).
+inline vec3 RandomUnitVector(vec2 disk) {
+    real r2 = disk.x * disk.x + disk.y * disk.y;
+    real stretch = 2 * std::sqrt(std::max(real(0), 1 - r2)); // (r^2 may round a hair above 1)
+    return {stretch * disk.x, stretch * disk.y, 1 - 2 * r2};
+}
+
+// Beyond the handouts, Ray Tracing in One Weekend's fuzzy reflection (§10.6): the tip of the unit
+// mirror direction of unit d moved to a random point of a sphere of radius `fuzz` around it
+// (`unit`: a random unit vector), so that the reflection spreads more the larger the sphere.
+// False where the new direction points into the surface (dir.n <= 0): the book's metal absorbs
+// that ray.
+inline bool FuzzReflect(vec3 d, vec3 n, real fuzz, vec3 unit, vec3 *dir) {
+    *dir = Reflect(d, n) + fuzz * unit;
+    return Dot(*dir, n) > 0;
+}
+
+// The colour a ray that hits nothing brings back: the background; under the book's sky
+// (`background ... up R G B`), the two colours blended by the height of the ray's direction,
+// a = (y / |dir| + 1) / 2: the background straight down, skyUp straight up (Ray Tracing in One
+// Weekend §4.2, white to blue).
+inline color BackgroundColor(const Scene *scene, vec3 dir) {
+    if (!scene->sky)
+        return scene->background;
+    real a = real(0.5) * (SafeNormalize(dir).y + 1);
+    return (1 - a) * scene->background + a * scene->skyUp;
+}
+
 // Snell's law for unit d against the unit normal n (d.n <= 0), eta = n1 / n2. Writes the unit
 // refracted direction to *t and returns true, or returns false for total internal reflection.
 bool Refract(vec3 d, vec3 n, real eta, vec3 *t);
@@ -243,6 +277,13 @@ void FindEmitters(const Scene *scene, std::vector<Emitter> *emitters);
 // length, like the distances it is divided into, so that their ratio, unlike an area and a
 // squared distance, stays in the range of numbers at every scale.
 real EmitterSqrtArea(const Scene *scene, const Emitter *e);
+
+// ---- blur.cpp: the fuzz of a mirror under `floor` and `phong` --------------------------------
+
+// A fuzzy mirror's direction for `ray` arriving at a hit with unit normal n (FuzzReflect), from a
+// random point that is a hash of the ray and the seed: every sample of a pixel, every ray of its
+// tree, reflects along a direction of its own. False where it points into the surface.
+bool FuzzyMirror(real fuzz, const Ray *ray, vec3 n, int seed, vec3 *dir);
 
 // ---- render.cpp: the render loop -------------------------------------------------------------
 

@@ -254,6 +254,19 @@ static color SurfaceColor(const Shading *sh, const Surface *s) {
     return FloorColor(sh, s);
 }
 
+// The mirror image of `mirror K`: the reflected ray's colour, times the mirror's tint. A fuzzy
+// mirror (Ray Tracing in One Weekend's metal) reflects along a direction drawn from its fuzz
+// sphere, another for each ray that meets it, so for each sample of the pixel (FuzzyMirror,
+// blur.cpp): the pixel's samples average the spread reflection. One that points into the surface
+// is absorbed, as the book's metal absorbs it, and brings back black.
+static color MirrorColor(const Shading *sh, const Surface *s, real k) {
+    vec3 dir = Reflect(s->ray->dir, s->hit->normal);
+    if (s->m->fuzz > 0 &&
+        !FuzzyMirror(s->m->fuzz, s->ray, s->hit->normal, sh->settings->path.seed, &dir))
+        return {0, 0, 0};
+    return s->m->tint * FollowRay(sh, s, RAY_REFLECTION, dir, k);
+}
+
 // Mixes the surface's colour with the mirror image: (1 - K) own + K reflected for `mirror K`.
 // A perfect mirror (K = 1) never shows its own colour, so it casts no shadow rays; a chain that
 // has used up `depth` rays ends in black (FollowRay).
@@ -263,8 +276,7 @@ static color ShadeHit(const Shading *sh, const Surface *s) {
     if (k < 1)
         result = (1 - k) * SurfaceColor(sh, s);
     if (k > 0)
-        result =
-            result + k * FollowRay(sh, s, RAY_REFLECTION, Reflect(s->ray->dir, s->hit->normal), k);
+        result = result + k * MirrorColor(sh, s, k);
     return result;
 }
 
@@ -279,7 +291,7 @@ static color ShadeFound(const Scene *scene, const RenderSettings *settings, RayK
     int node = RecordRay(kind, ray, log);
     if (settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads the hash
         log->surfaces = MixSurface(log->surfaces, found ? 2 * hit->index + hit->shape + 1 : 0);
-    color result = scene->background;
+    color result = found ? color{0, 0, 0} : BackgroundColor(scene, ray->dir);
     if (found) {
         int parent = log->current;
         log->current = node;
@@ -392,6 +404,7 @@ void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *ef
     for (const Light &light : scene->lights)
         lights = lights || Shines(&light);
     *effects = Effects{false, false, false, false, settings->samplesPerPixel > 1, false, {}, {}};
+    effects->defocus = scene->camera.kind == CAMERA_LOOKAT && scene->camera.lensRadius > 0;
     for (const Light &light : scene->lights)
         effects->lightSum = effects->lightSum + light.intensity;
     bool chain = settings->depth > 1; // room for a ray after the primary one
@@ -401,6 +414,7 @@ void PlanEffects(const Scene *scene, const RenderSettings *settings, Effects *ef
             continue;
         effects->reflection = effects->reflection || (chain && (m->mirror > 0 || m->ior > 0));
         effects->refraction = effects->refraction || (chain && m->ior > 0);
+        effects->fuzz = effects->fuzz || (chain && m->mirror > 0 && m->fuzz > 0);
         effects->shadows =
             effects->shadows || (shapes && LightsCanShow(scene, m, effects->lightSum));
         effects->specular =

@@ -211,11 +211,17 @@ void PrintStats(const RayStats *s, const RenderSettings *settings, int threads,
             (unsigned long long)s->diffuse, (unsigned long long)total);
     fprintf(stderr, "speed: %.3g Mrays/s\n", total / renderSeconds / 1e6);
     std::string effects;
-    const char *names[] = {" shadows",  " reflection", " refraction",
-                           " specular", " indirect",   " antialiasing"};
-    bool used[] = {s->shadow > 0,        s->reflection > 0, s->refraction > 0,
-                   s->specularTerms > 0, s->diffuse > 0,    settings->samplesPerPixel > 1};
-    for (int k = 0; k < 6; k++)
+    const char *names[] = {" shadows",  " reflection",   " refraction", " specular",
+                           " indirect", " antialiasing", " defocus",    " fuzz"};
+    bool used[] = {s->shadow > 0,
+                   s->reflection > 0,
+                   s->refraction > 0,
+                   s->specularTerms > 0,
+                   s->diffuse > 0,
+                   settings->samplesPerPixel > 1,
+                   settings->effects.defocus && s->primary > 0, // (every eye ray, on the lens)
+                   settings->effects.fuzz && s->reflection > 0};
+    for (int k = 0; k < 8; k++)
         if (used[k])
             effects += names[k];
     fprintf(stderr, "effects: %s\n", effects.empty() ? "none" : effects.c_str() + 1);

@@ -91,7 +91,7 @@ static bool ReadShading(const Statement *st, Scene *scene, std::string *error) {
 // The statements that set one thing for the whole scene, each at most once.
 static bool ReadSetting(const Statement *st, Scene *scene, Declared *declared, std::string *error) {
     const std::string &k = st->tokens[0];
-    real v[3];
+    real v[6];
     if (k == "size") { // `size W H`, or `size W` for a square image, as --size takes it
         size_t total = st->tokens.size() == 2 ? 2 : 3;
         if (!Once(st, &declared->size, error) || !Numbers(st, 1, 0, total, v, error) ||
@@ -110,11 +110,17 @@ static bool ReadSetting(const Statement *st, Scene *scene, Declared *declared, s
         return (v[0] >= 0 && v[0] <= 1) ||
                Fail(st, "ambient " + st->tokens[1] + ": must be in [0, 1]", error);
     }
-    if (k == "background") {
-        if (!Once(st, &declared->background, error) || !Numbers(st, 1, 3, 4, v, error))
+    if (k == "background") { // `background R G B`, or the book's sky: `background R G B up R G B`
+        bool sky = st->tokens.size() > 4 && st->tokens[4] == "up";
+        size_t total = sky ? 8 : 4;
+        if (!Once(st, &declared->background, error) || !Numbers(st, 1, 3, total, v, error) ||
+            (sky && !Numbers(st, 5, 3, total, v + 3, error)))
             return false;
         scene->background = {v[0], v[1], v[2]};
-        return CheckColor(st, "background", 1, scene->background, error);
+        if (sky)
+            scene->sky = true, scene->skyUp = {v[3], v[4], v[5]};
+        return CheckColor(st, "background", 1, scene->background, error) &&
+               (!sky || CheckColor(st, "background: up", 5, scene->skyUp, error));
     }
     if (k == "shading")
         return Once(st, &declared->shading, error) && ReadShading(st, scene, error);

@@ -7,6 +7,7 @@
 // starter: end
 #include "app.h"
 
+#include <cmath>
 #include <cstring>
 
 bool Fail(const Statement *st, const std::string &message, std::string *error) {
@@ -168,8 +169,8 @@ bool ReadLight(const Statement *st, Scene *scene, std::string *error) {
     return true;
 }
 
-// `material NAME [diffuse R G B] [ambient R G B] [specular KS N] [mirror K] [glass IOR]
-// [emit R G B]`
+// `material NAME [diffuse R G B] [ambient R G B] [specular KS N] [mirror K [fuzz F] [tint R G B]]
+// [glass IOR] [emit R G B]`
 // One property of a material statement, tokens[at], with its numbers v (already read): checked
 // and set.
 static bool SetMaterialProperty(const Statement *st, size_t at, const real *v, Material *m,
@@ -192,6 +193,13 @@ static bool SetMaterialProperty(const Statement *st, size_t at, const real *v, M
         if (!(v[0] >= 0 && v[0] <= 1))
             return Fail(st, "material: mirror fraction must be in [0, 1]", error);
         m->mirror = v[0];
+    } else if (key == "fuzz") { // (the book's metal takes fuzz up to 1, the fuzz sphere's radius
+        if (!(v[0] >= 0 && v[0] <= 1)) // as long as the mirror direction)
+            return Fail(st, "material: fuzz must be in [0, 1]", error);
+        m->fuzz = v[0];
+    } else if (key == "tint") {
+        m->tint = {v[0], v[1], v[2]};
+        return CheckColor(st, "material: tint", at + 1, m->tint, error);
     } else {
         if (!(v[0] > 0))
             return Fail(st, "material: index of refraction must be > 0", error);
@@ -209,7 +217,8 @@ struct MaterialProperty {
 static const MaterialProperty *FindProperty(const std::string &key) {
     static const MaterialProperty kProperties[] = {{"diffuse", 3, "R G B"}, {"ambient", 3, "R G B"},
                                                    {"specular", 2, "KS N"}, {"mirror", 1, "K"},
-                                                   {"glass", 1, "IOR"},     {"emit", 3, "R G B"}};
+                                                   {"glass", 1, "IOR"},     {"emit", 3, "R G B"},
+                                                   {"fuzz", 1, "F"},        {"tint", 3, "R G B"}};
     for (const MaterialProperty &p : kProperties)
         if (key == p.key)
             return &p;
@@ -229,7 +238,8 @@ bool ReadMaterial(const Statement *st, Scene *scene, std::string *error) {
         if (!p)
             return Fail(st,
                         "material: unknown property " + Shown(key) +
-                            " (expected diffuse, ambient, specular, mirror, glass or emit)",
+                            " (expected diffuse, ambient, specular, mirror, fuzz, tint, "
+                            "glass or emit)",
                         error);
         if (keysSeen.find(" " + key + " ") != std::string::npos)
             return Fail(st, "material: '" + key + "' given twice", error);
@@ -252,7 +262,64 @@ bool ReadMaterial(const Statement *st, Scene *scene, std::string *error) {
     }
     if (keysSeen.find(" ambient ") == std::string::npos) // ka defaults to kd
         m.ambient = m.diffuse;
+    bool metal = keysSeen.find(" fuzz ") != std::string::npos ||
+                 keysSeen.find(" tint ") != std::string::npos;
+    if (metal && keysSeen.find(" mirror ") == std::string::npos)
+        return Fail(st, "material: fuzz and tint are a mirror's: give mirror K too", error);
     scene->materials.push_back(m);
+    return true;
+}
+
+// One lens word of a lookat camera, tokens[k] and its number: checked, and *value set. A value
+// of -1 stands for a word not given yet.
+static bool LensWord(const Statement *st, size_t k, real *value, std::string *error) {
+    const std::string &word = st->tokens[k];
+    std::string why;
+    if (*value >= 0)
+        return Fail(st, "camera lookat: '" + word + "' given twice", error);
+    if (k + 1 >= st->tokens.size())
+        return Fail(st, "camera lookat: '" + word + "' needs a number", error);
+    if (!ParseReal(st->tokens[k + 1], value, &why))
+        return Fail(st, "camera lookat: " + word + ": " + why, error);
+    if (word == "defocus" && !(*value >= 0 && *value < 180))
+        return Fail(st, "camera lookat: defocus must be at least 0 and less than 180 degrees",
+                    error);
+    if (word == "aperture" && !(*value >= 0))
+        return Fail(st, "camera lookat: aperture must be >= 0", error);
+    if (word == "focus" && !(*value > 0))
+        return Fail(st, "camera lookat: focus must be > 0", error);
+    return true;
+}
+
+// The thin lens of a lookat camera, the words after its field of view: `defocus ANGLE` (Ray
+// Tracing in One Weekend's defocus_angle, in degrees: the cone of the rays that meet at one point
+// of the plane in focus) or `aperture D` (the lens's diameter, in world units), and `focus DIST`
+// (the book's focus_dist; without it, the distance from `from` to `to`: what the camera looks at
+// is sharp). The lens's radius is focus tan(ANGLE / 2), or D / 2.
+static bool ReadLens(const Statement *st, Camera *c, std::string *error) {
+    real angle = -1, aperture = -1, focus = -1;
+    for (size_t k = 12; k < st->tokens.size(); k += 2) {
+        const std::string &word = st->tokens[k];
+        real *value = word == "defocus"    ? &angle
+                      : word == "aperture" ? &aperture
+                      : word == "focus"    ? &focus
+                                           : nullptr;
+        if (!value)
+            return Fail(st,
+                        "camera lookat: unknown word " + Shown(word) +
+                            " after the field of view (expected defocus, aperture or focus)",
+                        error);
+        if (!LensWord(st, k, value, error))
+            return false;
+    }
+    if (angle >= 0 && aperture >= 0)
+        return Fail(st, "camera lookat: give the lens as defocus or as aperture, not both", error);
+    c->focusDistance = focus > 0 ? focus : SafeLength(c->to - c->from);
+    c->lensRadius = aperture >= 0 ? aperture / 2
+                    : angle > 0   ? c->focusDistance * std::tan(angle * real(M_PI / 360))
+                                  : 0;
+    if (!std::isfinite(c->lensRadius) || !std::isfinite(c->focusDistance))
+        return Fail(st, "camera lookat: the lens is beyond the range of numbers", error);
     return true;
 }
 
@@ -280,8 +347,9 @@ bool ReadCamera(const Statement *st, Scene *scene, std::string *error) {
         std::string why;
         if (!ScreenCameraIsValid(&c, &why))
             return Fail(st, "camera screen: " + why, error);
-    } else if (kind == "lookat") {
-        if (!Numbers(st, 2, 10, 12, v, error))
+    } else if (kind == "lookat") { // (its lens words follow the numbers: ReadLens)
+        bool lens = st->tokens.size() > 12 && !LooksDecimal(st->tokens[12]);
+        if (!Numbers(st, 2, 10, lens ? st->tokens.size() : 12, v, error))
             return false;
         c.kind = CAMERA_LOOKAT;
         c.from = {v[0], v[1], v[2]};
@@ -292,6 +360,8 @@ bool ReadCamera(const Statement *st, Scene *scene, std::string *error) {
         std::string why;
         if (!LookAtToScreen(&c, 1, 1, &check, &why))
             return Fail(st, "camera lookat: " + why, error);
+        if (lens && !ReadLens(st, &c, error))
+            return false;
     } else {
         return Fail(
             st, "camera: unknown kind " + Shown(kind) + " (expected perspective, screen or lookat)",

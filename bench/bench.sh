@@ -170,6 +170,10 @@ build/double/rtbench report "$dir"
 # Peers: smallpt's scene at equal noise, Embree's rays, spheres by the thousand, copies of one
 # triangle (bench/peers.sh; each peer skipped, saying how to get it, where it is absent)
 sh bench/peers.sh "$out" "$report" "${PEER_RUNS:-5}"
+# Ray Tracing in One Weekend's own program on its final scene, at equal error (bench/weekend.sh;
+# skipped, saying how to get the book's code, where RTIOW is not set)
+sh bench/weekend.sh "${WEEKEND_RUNS:-3}"
+cat "$dir/weekend.md" >>"$report"
 
 {
 echo

@@ -14,16 +14,27 @@
 #include <cstdio>
 #include <string>
 
+// The curves a program writes its 8-bit values with: sRGB (rt), x^(1/2.2) (smallpt), x^(1/2)
+// (Ray Tracing in One Weekend's linear_to_gamma).
+enum Curve { CURVE_SRGB, CURVE_GAMMA, CURVE_SQRT };
+
 // One 8-bit channel value back to linear light by the curve the program wrote it with.
-static double Decode(int v, bool srgb) {
+static double Decode(int v, Curve curve) {
     double x = v / 255.0;
-    if (!srgb)
+    if (curve == CURVE_GAMMA)
         return std::pow(x, 2.2);
+    if (curve == CURVE_SQRT)
+        return x * x;
     return x <= 0.04045 ? x / 12.92 : std::pow((x + 0.055) / 1.055, 2.4);
 }
 
-// rtbench noise IMAGE CURVE N REFERENCE CURVE R, each CURVE srgb or gamma (x^(1/2.2)): prints
-// sigma, the noise of one sample a pixel. (With N = 1 and R huge: the RMS difference itself.)
+static Curve CurveNamed(const std::string &name) {
+    return name == "srgb" ? CURVE_SRGB : name == "sqrt" ? CURVE_SQRT : CURVE_GAMMA;
+}
+
+// rtbench noise IMAGE CURVE N REFERENCE CURVE R, each CURVE srgb, gamma (x^(1/2.2)) or sqrt:
+// prints sigma, the noise of one sample a pixel. (With N = 1 and R huge: the RMS difference
+// itself.)
 int NoiseMain(char **argv) {
     Image a, b;
     std::string error;
@@ -31,7 +42,7 @@ int NoiseMain(char **argv) {
         fprintf(stderr, "%s\n", error.c_str());
         return 1;
     }
-    bool srgbA = std::string(argv[1]) == "srgb", srgbB = std::string(argv[4]) == "srgb";
+    Curve curveA = CurveNamed(argv[1]), curveB = CurveNamed(argv[4]);
     double n = atof(argv[2]), r = atof(argv[5]);
     if (a.width != b.width || a.height != b.height || !(n > 0) || !(r > 0)) {
         fprintf(stderr, "noise: images of different sizes, or no sample counts\n");
@@ -39,7 +50,7 @@ int NoiseMain(char **argv) {
     }
     double sum = 0;
     for (size_t k = 0; k < a.pixels.size(); k++) {
-        double d = Decode(a.pixels[k], srgbA) - Decode(b.pixels[k], srgbB);
+        double d = Decode(a.pixels[k], curveA) - Decode(b.pixels[k], curveB);
         sum += d * d;
     }
     double square = sum / a.pixels.size();

@@ -108,6 +108,8 @@ void TestMesh();
 void TestMeshRays();
 void TestLeaks();
 void TestHandout();
+void TestLens();
+void TestFuzz();
 
 // The handouts' steps checked as their debugging advice puts it (test_handout.cpp), a group a
 // step, named as a starter kit's stubs.list names the function a student writes; `needs`, the

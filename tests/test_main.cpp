@@ -122,6 +122,8 @@ static const struct {
     {"smooth", TestSmooth},
     {"leaks", TestLeaks},
     {"handout", TestHandout},
+    {"lens", TestLens},
+    {"fuzz", TestFuzz},
     {"probes", TestProbes},
     {"program", TestProgram},
     {"corpus", TestCorpus},

@@ -470,15 +470,16 @@ static void TestPrintableLine() {
 // as the default (blocks, the BVH, packets) for every bundled scene, one sample a pixel and four
 // jittered ones; path-traced scenes with the journal's estimator too.
 static void TestPlainLayoutSameBytes(const std::string &dir) {
-    const char *scenes[] = {"reference", "test", "first",   "handout2",
-                            "effects",   "mesh", "cornell", "assignment_path"};
+    const char *scenes[] = {"reference", "test",    "first",           "handout2", "effects",
+                            "mesh",      "cornell", "assignment_path", "weekend"};
     std::string err;
     int differ = 0, runs = 0;
     for (const char *name : scenes) {
         char *path = realpath((std::string("scenes/") + name + ".scene").c_str(), nullptr);
         std::string scene = path ? std::string("'") + path + "'" : name;
         free(path);
-        bool traced = std::string(name) == "cornell" || std::string(name) == "assignment_path";
+        bool traced = std::string(name) == "cornell" || std::string(name) == "assignment_path" ||
+                      std::string(name) == "weekend";
         std::string size = std::string(name) == "handout2" ? " --size 32x24" : " --size 32";
         std::vector<std::string> settings = {"", " --spp 4 --aa jitter"};
         if (traced)
