@@ -115,6 +115,7 @@ static const struct {
     {"mesh", TestMesh},
     {"mesh_rays", TestMeshRays},
     {"smooth", TestSmooth},
+    {"smooth_walls", TestSmoothWalls},
     {"leaks", TestLeaks},
     {"handout", TestHandout},
     {"probes", TestProbes},
