@@ -171,6 +171,53 @@ static void TestSmoothAndFit(const std::string &dir) {
           "`fit` of a mesh that is one point: an error (" + error + ")");
 }
 
+// The corner normals rt will not interpolate, each with one warning a mesh naming the file: a
+// triangle whose corner normal leans behind its face, or opposes the other two (drawn flat: a
+// quarter of it would otherwise be shaded from behind); a zero `vn`; a `vn` the transform words
+// take beyond the range of numbers; and under `smooth`, faces wound against their neighbours.
+static void TestNormalWarnings(const std::string &dir) {
+#ifdef RT_FLOAT // (a normal that a scale of 1e-10 in x takes beyond float's range, or double's)
+    const char *kHugeNormal = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 1e30 0 1\nf 1//1 2//1 3//1\n";
+#else
+    const char *kHugeNormal = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 1e300 0 1\nf 1//1 2//1 3//1\n";
+#endif
+    struct {
+        const char *obj, *words, *warning;
+        size_t smooth, warnings; // how many triangles keep corner normals; how many warnings
+    } cases[] = {
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\nvn 0 0 -1\n"
+         "f 1//1 2//1 3//2\nf 2//1 4//1 3//1\n",
+         "", "m.obj: warning: 1 triangle has a corner normal that leans behind its face", 1, 1},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 -1\nvn 0 0 1\nf 1//1 2//1 3//2\n", "",
+         "m.obj: warning: 1 triangle has a corner normal that leans behind its face", 0, 1},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nvn 0 0 1\nf 1//1 2//2 3//2\n", "",
+         "m.obj:4: warning: vn: a normal of length 0 has no direction", 0, 1},
+        {kHugeNormal, "scale 1e-10 1 1",
+         "m.obj:4: warning: vn: the transform words take this normal beyond the range", 0, 1},
+        {"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\n"
+         "f 1 2 5\nf 2 3 5\nf 3 5 4\nf 1 5 4\nf 1 4 3 2\n",
+         // (and the face wound against the rest is flat: its averaged corners lean behind it)
+         "smooth", "m.obj: warning: smooth: 3 edges join faces wound opposite ways", 5, 2},
+    };
+    for (const auto &c : cases) {
+        Scene scene;
+        std::string error;
+        bool read = LoadScene(dir, c.obj, std::string("material m\nmesh m.obj m ") + c.words + "\n",
+                              &scene, &error);
+        size_t smooth = 0;
+        for (const CornerNormals &n : scene.cornerNormals)
+            smooth += MaxComponent(n.a) > 0;
+        std::string all;
+        for (const std::string &w : scene.warnings)
+            all += "'" + w + "' ";
+        bool warned = scene.warnings.size() == c.warnings && all.find(c.warning) != std::string::npos;
+        CHECK(read && warned && smooth == c.smooth,
+              std::to_string(c.warnings) + " warning(s), one '" + c.warning + "...', and " +
+                  std::to_string(c.smooth) + " smooth triangle(s); got " + std::to_string(smooth) +
+                  " and " + all + error);
+    }
+}
+
 // ---- whole images ----------------------------------------------------------------------------
 
 // The linear light of every pixel of an n x n image of the scene.
@@ -274,6 +321,7 @@ void TestSmooth() {
     TestInterpolation(dir);
     TestTransformedNormals(dir);
     TestSmoothAndFit(dir);
+    TestNormalWarnings(dir);
     TestTerminator(dir);
     TestNoLeak(dir);
     RemoveTestDir(dir);
