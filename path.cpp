@@ -166,8 +166,8 @@ static void Depart(Path *path, const RayHit *hit) {
     // starter: begin kit-depart
     path->departs = path->settings->methods.selfHit == SELF_HIT_BOUND;
     if (path->departs)
-        path->departure = DeparturePoint(path->scene, &path->settings->methods, hit, hit->normal,
-                                         hit->normal);
+        path->departure =
+            DeparturePoint(path->scene, &path->settings->methods, hit, hit->normal, hit->normal);
     // starter: end
 }
 

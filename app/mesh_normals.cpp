@@ -42,7 +42,8 @@ static size_t EdgesWoundAgainst(const MeshCorners *m, size_t n) {
     edges.reserve(3 * n);
     for (size_t t = 0; t < n; t++)
         for (int i = 0; i < 3; i++) {
-            uint64_t a = (uint64_t)m->vertex[3 * t + i], b = (uint64_t)m->vertex[3 * t + (i + 1) % 3];
+            uint64_t a = (uint64_t)m->vertex[3 * t + i],
+                     b = (uint64_t)m->vertex[3 * t + (i + 1) % 3];
             if (a != b)
                 edges.push_back((std::min(a, b) << 33) | (std::max(a, b) << 1) | (a < b ? 1 : 0));
         }
@@ -70,6 +71,24 @@ static bool AgreeWithFace(vec3 c[3], vec3 face) {
     return Dot(c[0], face) > 0 && Dot(c[1], face) > 0 && Dot(c[2], face) > 0;
 }
 
+// The mesh's warnings: `flattened` triangles made flat (AgreeWithFace), `against` edges between
+// faces wound opposite ways (EdgesWoundAgainst); none for 0.
+static void Warn(const std::string &name, size_t flattened, size_t against, Scene *scene) {
+    if (flattened > 0)
+        scene->warnings.push_back(
+            name + ": warning: " + std::to_string(flattened) +
+            (flattened == 1 ? " triangle has" : " triangles have") +
+            " a corner normal that leans behind its face (or opposes the other corners'); drawn "
+            "flat");
+    if (against > 0)
+        scene->warnings.push_back(
+            name + ": warning: smooth: " + std::to_string(against) +
+            (against == 1 ? " edge joins" : " edges join") +
+            " faces wound opposite ways, so the normals averaged at their vertices mix a face's "
+            "outside with its neighbour's inside; wind every face the same way (counter-clockwise "
+            "seen from outside)");
+}
+
 void AddCornerNormals(const MeshCorners *m, MeshNormals how, size_t first, const char *meshName,
                       Scene *scene) {
     size_t n = scene->triangles.size() - first, flattened = 0;
@@ -94,21 +113,7 @@ void AddCornerNormals(const MeshCorners *m, MeshNormals how, size_t first, const
         made[t] = {c[0], c[1], c[2]};
         any = true;
     }
-    std::string name = meshName;
-    if (flattened > 0)
-        scene->warnings.push_back(
-            name + ": warning: " + std::to_string(flattened) +
-            (flattened == 1 ? " triangle has" : " triangles have") +
-            " a corner normal that leans behind its face (or opposes the other corners'); drawn "
-            "flat");
-    size_t against = how == MESH_SMOOTH ? EdgesWoundAgainst(m, n) : 0;
-    if (against > 0)
-        scene->warnings.push_back(
-            name + ": warning: smooth: " + std::to_string(against) +
-            (against == 1 ? " edge joins" : " edges join") +
-            " faces wound opposite ways, so the normals averaged at their vertices mix a face's "
-            "outside with its neighbour's inside; wind every face the same way (counter-clockwise "
-            "seen from outside)");
+    Warn(meshName, flattened, how == MESH_SMOOTH ? EdgesWoundAgainst(m, n) : 0, scene);
     if (!any)
         return;
     scene->cornerNormals.resize(first, CornerNormals{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}});

@@ -75,43 +75,50 @@ static bool MeantAsNumber(const std::string &t) {
            lower == "nan" || lower == "inf";
 }
 
-// One word and its values, tokens[*k..]; moves *k past them. `scale` takes three numbers where
-// the token after its first is meant as a number (`scale 1 nan 1` is a scale of three, one of
-// them bad, not a scale of 1 and an unknown word 'nan').
+// How many values the transform word tokens[k] takes (0: it is no transform word), and *word:
+// the word, or "scale3" for `scale X Y Z`. `scale` takes three where the token after its first
+// is meant as a number (`scale 1 nan 1` is a scale of three, one of them bad, not a scale of 1
+// and an unknown word 'nan').
+static size_t WordValues(const std::vector<std::string> &tokens, size_t k, std::string *word) {
+    *word = tokens[k];
+    if (*word == "scale" && k + 2 < tokens.size() && !IsMeshWord(tokens[k + 2]) &&
+        MeantAsNumber(tokens[k + 2]))
+        *word = "scale3"; // `scale X Y Z`: three numbers follow
+    if (*word == "scale")
+        return 1;
+    if (*word == "rotate")
+        return 2;
+    return *word == "translate" || *word == "scale3" ? 3 : 0;
+}
+
+// Why a token where a word was expected, and which is none, is refused.
+static std::string NotAWord(const std::string &word) {
+    if (MeantAsNumber(word))
+        return "a number, " + Shown(word) +
+               ", where a word was expected (scale takes 1 or 3 numbers, rotate an axis and an "
+               "angle, translate 3, fit 1)";
+    return "unknown word " + Shown(word) +
+           " (expected scale, rotate, translate, fit, flat or smooth; if the file name has a "
+           "space, that is why: file names may not contain spaces)";
+}
+
+// One word and its values, tokens[*k..]; moves *k past them.
 static bool ParseMeshStep(const std::vector<std::string> &tokens, size_t *k, MeshStep *step,
                           std::string *error) {
-    std::string word = tokens[*k];
-    if (word == "scale" && *k + 2 < tokens.size() && !IsMeshWord(tokens[*k + 2]) &&
-        MeantAsNumber(tokens[*k + 2]))
-        word = "scale3"; // `scale X Y Z`: three numbers follow
-    size_t count = word == "scale"       ? 1
-                   : word == "rotate"    ? 2
-                   : word == "translate" ? 3
-                   : word == "scale3"    ? 3
-                                         : 0;
-    if (count == 0 && MeantAsNumber(word)) {
-        *error = "a number, " + Shown(word) +
-                 ", where a word was expected (scale takes 1 or 3 numbers, rotate an axis and "
-                 "an angle, translate 3, fit 1)";
-        return false;
-    }
+    std::string word;
+    size_t count = WordValues(tokens, *k, &word);
     if (count == 0) {
-        *error = "unknown word " + Shown(word) +
-                 " (expected scale, rotate, translate, fit, flat or smooth; if the file name has "
-                 "a space, that is why: file names may not contain spaces)";
+        *error = NotAWord(word);
         return false;
     }
     const char *kScaleNumbers = "scale needs 1 or 3 finite numbers (scale 2, or scale 1 -1 1 to "
                                 "mirror in y)";
-    if (word == "scale3" && *k + count >= tokens.size()) {
-        *error = kScaleNumbers + std::string(", found ") + std::to_string(tokens.size() - *k - 1);
-        return false;
-    }
     if (*k + count >= tokens.size()) {
-        *error = tokens[*k] + ": expected " +
-                 (count == 1   ? "a factor (scale 2 doubles the mesh)"
-                  : count == 2 ? "an axis and an angle in degrees (rotate y 30)"
-                               : "three numbers X Y Z (translate 0 -1 -5)");
+        *error = word == "scale3" ? kScaleNumbers + std::string(", found ") +
+                                        std::to_string(tokens.size() - *k - 1)
+                 : count == 1 ? "scale: expected a factor (scale 2 doubles the mesh)"
+                 : count == 2 ? "rotate: expected an axis and an angle in degrees (rotate y 30)"
+                              : "translate: expected three numbers X Y Z (translate 0 -1 -5)";
         return false;
     }
     real v[3];

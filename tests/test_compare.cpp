@@ -140,7 +140,8 @@ static void TestBoundedReading(const std::string &dir) {
         const char *pipe, *file, *message;
     } bad[] = {
         {"", "/dev/zero", "/dev/zero: not a PNG or PPM image"},
-        {"", "long.png", "long.png: goes on past 16777320 bytes, more than a PNG of 4 x 4 can hold"},
+        {"", "long.png",
+         "long.png: goes on past 16777320 bytes, more than a PNG of 4 x 4 can hold"},
         {"", "padded.ppm", "padded.ppm: goes on past 107 bytes without its 2 x 1 pixels"},
         {"(printf 'P3 1 1 255 '; cat /dev/zero) |", "/dev/stdin",
          "/dev/stdin: the PPM ends before its 1 x 1 pixels"},

@@ -319,8 +319,8 @@ static void TestMeshStatementErrors(const std::string &dir) {
          2, "mesh: scale: the mesh would shrink below the range of numbers"},
         {"material m\nmesh . m\n", 2, "not a regular file"},
         // `fit` refuses what `scale` refuses: a mesh whose longest side would be subnormal
-        {std::string("material m\nmesh quad.obj m fit ") + (kDouble ? "1e-320" : "1e-40") + "\n",
-         2, "mesh: fit: the mesh would shrink below the range of numbers"},
+        {std::string("material m\nmesh quad.obj m fit ") + (kDouble ? "1e-320" : "1e-40") + "\n", 2,
+         "mesh: fit: the mesh would shrink below the range of numbers"},
         {std::string("material m\nmesh quad.obj m fit ") +
              (kDouble ? "1e-200 scale 1e-200" : "1e-20 scale 1e-20") + "\n",
          2, "mesh: fit and scale: the mesh would shrink below the range of numbers"},

@@ -210,7 +210,8 @@ static void TestNormalWarnings(const std::string &dir) {
         std::string all;
         for (const std::string &w : scene.warnings)
             all += "'" + w + "' ";
-        bool warned = scene.warnings.size() == c.warnings && all.find(c.warning) != std::string::npos;
+        bool warned =
+            scene.warnings.size() == c.warnings && all.find(c.warning) != std::string::npos;
         CHECK(read && warned && smooth == c.smooth,
               std::to_string(c.warnings) + " warning(s), one '" + c.warning + "...', and " +
                   std::to_string(c.smooth) + " smooth triangle(s); got " + std::to_string(smooth) +
@@ -248,8 +249,8 @@ static void TestTerminator(const std::string &dir) {
                             "material m diffuse 1 1 1\n";
         Scene mesh, sphere;
         std::string error;
-        bool read = LoadScene(dir, IcosphereObj(level), std::string(scene) + "mesh m.obj m\n", &mesh,
-                              &error) &&
+        bool read = LoadScene(dir, IcosphereObj(level), std::string(scene) + "mesh m.obj m\n",
+                              &mesh, &error) &&
                     LoadScene(dir, "", std::string(scene) + "sphere 0 0 0 1 m\n", &sphere, &error);
         CHECK(read, "the icosphere and the true sphere load: " + error);
         if (!read)
