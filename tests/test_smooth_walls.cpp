@@ -61,6 +61,13 @@ static bool Load(const std::string &dir, const std::string &obj, const std::stri
     return ReadSceneFile((dir + "/s.scene").c_str(), out, error);
 }
 
+// The scales the closed meshes and rooms are drawn at: 1, and the ends of those the docs claim.
+#ifdef RT_FLOAT
+static const double kScales[] = {1, 1e-15, 1e15};
+#else
+static const double kScales[] = {1, 1e-150, 1e150};
+#endif
+
 // ---- closed rooms --------------------------------------------------------------------------
 
 // A closed room 10 x 10 x 10, floor at y = -1, ceiling at y = 9, of flat walls (r.obj), camera
@@ -98,13 +105,8 @@ static void CheckRoom(const std::string &dir, const char *what, const std::strin
 // on the floor, and an icosphere of 80 faces with the true sphere's normals resting on it; at
 // scale 1 and at the ends of the scales the docs claim.
 static void TestRooms(const std::string &dir) {
-#ifdef RT_FLOAT
-    const double scales[] = {1, 1e-15, 1e15};
-#else
-    const double scales[] = {1, 1e-150, 1e150};
-#endif
     vec3 eye = {0, 3, 4}, up = {0, real(7.5), 0}, low = {0, 2, 4}, down = {0, 0, 0};
-    for (double scale : scales) {
+    for (double scale : kScales) {
         for (const char *shading : {"floor", "phong", "path"})
             CheckRoom(dir, "a smooth cube 0.1 below the ceiling", kCube, "smooth translate 0 7.9 0",
                       eye, up, shading, scale);
@@ -120,22 +122,28 @@ static void TestRooms(const std::string &dir) {
 // ---- closed smooth meshes with normals that disagree ---------------------------------------
 
 // A lamp (an emitting sphere and a point light) inside the closed mesh m.obj moved by `words`,
-// seen from outside with no other light: every pixel must be black.
+// seen from outside with no other light, at each scale: every pixel must be black.
 static void CheckClosed(const std::string &dir, const std::string &what, const std::string &obj,
                         const std::string &words) {
-    for (const char *shading : {"floor", "phong", "path"}) {
-        std::string text = std::string("size 64 64\ncamera lookat 3 2.5 4  0 0 0  0 1 0  40\n") +
-                           "shading " + shading + "\nambient 0\nbackground 0 0 0\n" +
-                           "material m diffuse 0.8 0.8 0.8\n" +
-                           "material lamp diffuse 0 0 0 emit 5 5 5\nmesh m.obj m " + words +
-                           "\nlight 0.6 0.6 0.6 4 4 4\nsphere -0.3 -0.3 -0.3 0.3 lamp\n";
-        Scene scene;
-        std::string error;
-        bool read = Load(dir, obj, text, &scene, &error);
-        int lit = read ? LitPixels(&scene, 1) : -1;
-        CHECK(read && lit == 0, what + ", shading " + shading + ": a lamp inside it lights " +
-                                    std::to_string(lit) + " of 4096 pixels outside " + error);
-    }
+    for (double s : kScales)
+        for (const char *shading : {"floor", "phong", "path"}) {
+            char text[700];
+            snprintf(text, sizeof text,
+                     "size 64 64\ncamera lookat %.17g %.17g %.17g  0 0 0  0 1 0  40\nshading %s\n"
+                     "ambient 0\nbackground 0 0 0\nmaterial m diffuse 0.8 0.8 0.8\n"
+                     "material lamp diffuse 0 0 0 emit 5 5 5\nmesh m.obj m %s scale %.17g\n"
+                     "light %.17g %.17g %.17g 4 4 4\nsphere %.17g %.17g %.17g %.17g lamp\n",
+                     3 * s, 2.5 * s, 4 * s, shading, words.c_str(), s, 0.6 * s, 0.6 * s, 0.6 * s,
+                     -0.3 * s, -0.3 * s, -0.3 * s, 0.3 * s);
+            Scene scene;
+            std::string error;
+            bool read = Load(dir, obj, text, &scene, &error);
+            int lit = read ? LitPixels(&scene, 1) : -1;
+            snprintf(text, sizeof text,
+                     ", shading %s, scale %g: a lamp inside it lights %d of 4096 pixels outside ",
+                     shading, s, lit);
+            CHECK(read && lit == 0, what + text + error);
+        }
 }
 
 // A face wound the other way under `smooth`; a corner whose normal leans inward; nearly tangent
