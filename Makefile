@@ -40,7 +40,7 @@ TOP = geometry camera blur shade path render smooth $(SCENES)
 ROBUST = robust/watertight robust/plane robust/rescale robust/leave
 FAST = fast/commit fast/build fast/kernel fast/commit_spheres
 APP = app/options app/modes app/image app/image_read app/text app/scene_file app/statements \
-      app/mesh app/mesh_words app/probe app/views
+      app/mesh app/mesh_words app/mesh_normals app/probe app/views
 CORE = $(TOP) $(ROBUST) $(FAST) $(APP)
 TESTS = $(basename $(notdir $(wildcard tests/test_*.cpp))) exercise hard_cases hard_cases_offset robust_scenes
 # The tests that run the program or read files, and use no `real`: compiled once for both builds.

@@ -405,7 +405,8 @@ void FindEyeRayHits(const Scene *scene, Methods methods, const Ray *rays, int co
 // second handout's shadow rays). rt's: start where no rounding can put the ray behind the
 // surface, the hit point moved off it by the point's own error bound, so no epsilon is needed at
 // any scale, and for a hit near a triangle's edge moved in from the edge first, so that the ray
-// starts inside a closed mesh (LeavingPoint); a triangle the ray plainly goes away from is then
+// starts inside a closed mesh (LeavingPoint; off a smooth mesh, out at the curved surface where
+// the way there is free: DeparturePoint); a triangle the ray plainly goes away from is then
 // passed over, which changes no answer and saves its test (StartLeaving).
 void LeaveSurface(const Scene *scene, const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray,
                   SelfHit *from) {
@@ -414,7 +415,7 @@ void LeaveSurface(const Scene *scene, const RayHit *hit, vec3 dir, const Methods
     ray->origin = hit->point;
     // starter: begin kit-leave-surface
     if (methods->selfHit == SELF_HIT_BOUND) { // handout: skip the shape left, or t_min = 0.001
-        ray->origin = LeavingPoint(scene, hit, dir); // robust: off the surface, in from its edges
+        ray->origin = DeparturePoint(scene, methods, hit, dir, dir); // robust: off, in from edges
         *from = StartLeaving(scene, hit, dir, dir);
         return;
     }
@@ -430,13 +431,14 @@ void LeaveSurface(const Scene *scene, const RayHit *hit, vec3 dir, const Methods
 // The shadow ray: leaves the surface as LeaveSurface says, toward the light, with dir = light -
 // origin, so t = 1 is the light itself and the open interval (tMin, 1) holds every possible
 // blocker, however far away the light is. Under the bound, the origin moves to the light's side
-// and the pass-over is judged for the final direction.
+// (off a smooth mesh, to the side the hit was seen from: the light may lie behind the flat
+// triangle), and the pass-over is judged for the final direction.
 bool ShadowRay(const Scene *scene, const RayHit *hit, vec3 lightPosition, const Methods *methods,
                Ray *ray, SelfHit *from) {
     vec3 side = lightPosition - hit->point;
     // starter: begin kit-shadow-ray
     if (methods->selfHit == SELF_HIT_BOUND) {
-        ray->origin = ShadowOrigin(scene, hit, side); // robust: as in LeaveSurface
+        ray->origin = DeparturePoint(scene, methods, hit, side, hit->normal); // robust: as above
         ray->dir = lightPosition - ray->origin;
         *from = StartLeaving(scene, hit, side, ray->dir);
         return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;

@@ -170,13 +170,14 @@ static color JournalColor(Path *path, const Ray *ray, const SelfHit *from, RayKi
 
 // Where the rays from a diffuse hit start. All go to the side its normal faces (each is cast
 // only with cos theta > 0), and the self-hit bound moves the hit point off the surface to that
-// side whatever the direction (LeavingPoint): one point, moved once a vertex. Under the other
+// side whatever the direction (DeparturePoint): one point, moved once a vertex. Under the other
 // methods LeaveSurface and ShadowRay decide for each ray.
 static void Depart(Path *path, const RayHit *hit) {
     // starter: begin kit-depart
     path->departs = path->settings->methods.selfHit == SELF_HIT_BOUND;
     if (path->departs)
-        path->departure = LeavingPoint(path->scene, hit, hit->normal);
+        path->departure =
+            DeparturePoint(path->scene, &path->settings->methods, hit, hit->normal, hit->normal);
     // starter: end
 }
 

@@ -374,6 +374,14 @@ inline vec3 SurfaceNormal(const Scene *scene, const RayHit *hit) {
     return HasCornerNormals(scene, hit) ? SmoothNormal(scene, hit) : hit->normal;
 }
 
+// Where a ray that leaves `hit` in direction dir starts under the self-hit bound. Off a flat
+// triangle or a sphere, LeavingPoint (robust/robust.h). Off a smooth mesh's triangle, always on
+// the side `toward` points to (the side the hit was seen from, for a shadow ray): moved out to
+// where the curved surface would be (TerminatorOrigin) where the way there, and as far again,
+// meets no shape; else off the flat triangle, as LeavingPoint moves it.
+vec3 DeparturePoint(const Scene *scene, const Methods *methods, const RayHit *hit, vec3 dir,
+                    vec3 toward);
+
 // ---- the seam: speed machinery that main may install (fast/) --------------------------------
 
 // Beyond the handouts, a step every search takes first (SearchList, and fast/ the same way): a

@@ -2,8 +2,12 @@
 // mesh file's `vn`), interpolated across it (Phong shading, Phong 1975: "Illumination for
 // computer generated pictures"). A mesh of flat triangles that stands for a curved surface is
 // lit as the surface, while every intersection, offset and self-hit decision keeps the flat
-// triangle's own (geometric) normal, as pbrt-v4 keeps the two apart (§3.10.2).
+// triangle's own (geometric) normal, as pbrt-v4 keeps the two apart (§3.10.2). And where a ray
+// that leaves a smooth mesh starts: out at the curved surface, where the way there is free.
 #include "ray.h"
+// starter: begin kit-robust-include
+#include "robust/robust.h"
+// starter: end
 
 #include <algorithm>
 
@@ -41,3 +45,21 @@ vec3 SmoothNormal(const Scene *scene, const RayHit *hit) {
     // ray that arrived on the other side sees the other side of the smooth surface too
     return hit->frontFace ? n : -n;
 }
+
+// starter: begin kit-departure
+vec3 DeparturePoint(const Scene *scene, const Methods *methods, const RayHit *hit, vec3 dir,
+                    vec3 toward) {
+    if (!HasCornerNormals(scene, hit))
+        return LeavingPoint(scene, hit, dir);
+    // robust: never behind the face it leaves, whatever the ray's direction; a ray toward a light
+    // behind the flat triangle then meets it (or the mesh around it) and finds the light hidden
+    vec3 flat = LeavingPoint(scene, hit, toward), moved;
+    if (!TerminatorOrigin(scene, hit, toward, &moved))
+        return flat;
+    // robust: the move out to the curved surface passes through nothing, nor does as long a way
+    // beyond it (so no shape lies within rounding of where the ray starts): else the ray would
+    // start past a wall, a floor or another part of the mesh that the hit itself cannot see
+    Ray way = {flat, moved - flat};
+    return AnyHit(scene, *methods, &way, 0, 2) ? flat : moved;
+}
+// starter: end

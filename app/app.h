@@ -204,6 +204,27 @@ std::string MeshPath(const char *sceneFile, const std::string &path);
 bool ReadMeshStatement(const std::vector<std::string> &tokens, const char *sceneFile, int line,
                        int material, size_t maxTriangles, Scene *scene, std::string *error);
 
+// ---- mesh_normals.cpp: a smooth mesh's corner normals ------------------------------------------
+
+// What a mesh file gave its triangles' corners (mesh.cpp keeps it while the file is read): for
+// triangle t, vertex[3t + i] and normal[3t + i] are its corner i's places among the file's
+// `vertices` positions and among its normals (-1: none).
+struct MeshCorners {
+    const int *vertex, *normal;
+    size_t vertices;
+    const vec3 *normals;
+};
+
+// The corner normals of the mesh's triangles, scene->triangles[first..], as `how` asks (the
+// file's, or for `smooth` the faces' normals averaged at each vertex), each triangle's turned to
+// its outward side. A triangle with a zero normal at a corner, or a corner that then leans behind
+// its face (c.face <= 0), is flat. scene->cornerNormals grows to hold them (flat triangles before
+// them getting zeros; nothing is added for a mesh with none). Warnings naming meshName go to
+// scene->warnings: how many triangles a corner leaning behind made flat, and under `smooth`, how
+// many edges join faces wound opposite ways.
+void AddCornerNormals(const MeshCorners *corners, MeshNormals how, size_t first,
+                      const char *meshName, Scene *scene);
+
 // ---- probe.cpp: probes and ray trees (docs/command-line.md) -------------------------------------
 
 // Reads a probe line `OX OY OZ DX DY DZ`. Returns false with *error for a bad line; sets *blank

@@ -4,8 +4,9 @@
 // the vertex positions and normals are kept, because faces name them by number, and each face
 // goes straight into the scene's triangles as a fan from its first corner. `v`, `vn` and `f` are
 // the statements read; every other statement (texture coordinates, groups, materials, lines,
-// points) is skipped. A smooth mesh's corner normals are made once the file is read (the `vn` a
-// face names, or for `smooth` the faces' normals averaged at each vertex). The words after the
+// points) is skipped. A smooth mesh's corner normals are made once the file is read
+// (mesh_normals.cpp: the `vn` a face names, or for `smooth` the faces' normals averaged at each
+// vertex). The words after the
 // material are mesh_words.cpp's; `fit` needs the mesh's size before any vertex is placed, so a
 // first pass reads the positions alone. Errors are values, "MESH:LINE: message", as for scene
 // files.
@@ -43,7 +44,8 @@ struct MeshReading {
     int line;         // the line being read
     int badNormal;    // the first line with a normal index out of range (its face is flat); 0
     std::string badIndex;
-    int badVn; // the first `vn` line that is not three numbers (its normal is 0); 0
+    int badVn; // the first `vn` line that is not three numbers, or not a direction (its normal is
+               // 0); 0
     std::string badVnWhy;
 };
 
@@ -68,7 +70,8 @@ static bool ReadThree(const std::vector<std::string> &tokens, real v[3], std::st
 }
 
 // `v x y z [w]`: the position, moved by the transform words; `vn x y z`: a normal, turned by
-// them (a zero normal stays 0, and the faces that name it are flat).
+// them (a zero normal, or one turned beyond the range of numbers, is 0, and the faces that name
+// it are flat).
 static bool ReadVertex(const std::vector<std::string> &tokens, const std::vector<MeshStep> &steps,
                        const std::string &statement, MeshReading *r, std::string *error) {
     real v[3];
@@ -88,7 +91,17 @@ static bool ReadVertex(const std::vector<std::string> &tokens, const std::vector
         return false;
     }
     if (tokens[0] == "vn") {
-        r->normals.push_back(TransformNormal(steps, {v[0], v[1], v[2]}));
+        vec3 n = TransformNormal(steps, {v[0], v[1], v[2]});
+        if (!IsFinite(n) || MaxComponent(n) == 0) { // (warned about once, as a bad vn line is)
+            if (r->badVn == 0)
+                r->badVn = r->line,
+                r->badVnWhy = MaxComponent({v[0], v[1], v[2]}) == 0
+                                  ? "vn: a normal of length 0 has no direction"
+                                  : "vn: the transform words take this normal beyond the range "
+                                    "of numbers";
+            n = {0, 0, 0};
+        }
+        r->normals.push_back(n);
         return true;
     }
     vec3 p = TransformVertex(steps, {v[0], v[1], v[2]});
@@ -254,60 +267,7 @@ bool ReadObj(FILE *file, const char *meshName, int material, const std::vector<M
                      error);
 }
 
-// ---- corner normals --------------------------------------------------------------------------
-
-// The unit normal of a triangle's outward side, (b - a) x (c - a), its edges first brought near
-// 1 by a power of two so that the product neither over- nor underflows; 0 without area.
-static vec3 FaceNormal(const Triangle *t) {
-    vec3 e1 = t->b - t->a, e2 = t->c - t->a;
-    int k = UnitExponent({MaxComponent(e1), MaxComponent(e2), 0});
-    return SafeNormalize(Cross(ScaleByPowerOfTwo(e1, k), ScaleByPowerOfTwo(e2, k)));
-}
-
-static bool IsZero(vec3 v) { return v.x == 0 && v.y == 0 && v.z == 0; }
-
-// For `smooth`: at each vertex, the mean of the unit normals of the faces around it (each face
-// counts once, whatever its size: a few long thin triangles do not outweigh the rest).
-static std::vector<vec3> VertexNormals(const MeshReading *r, const Triangle *first, size_t n) {
-    std::vector<vec3> sum(r->vertices.size(), vec3{0, 0, 0});
-    for (size_t t = 0; t < n; t++) {
-        vec3 face = FaceNormal(&first[t]);
-        for (int i = 0; i < 3; i++)
-            sum[r->cornerVertex[3 * t + i]] = sum[r->cornerVertex[3 * t + i]] + face;
-    }
-    for (vec3 &v : sum)
-        v = SafeNormalize(v);
-    return sum;
-}
-
-// The corner normals of the mesh's triangles, scene->triangles[first..], as `how` asks, each
-// triangle's turned to its outward side (the file's winding and its normals may disagree); a
-// triangle with a zero normal at a corner is flat. Nothing is added for a mesh with none.
-static void AddCornerNormals(const MeshReading *r, MeshNormals how, size_t first, Scene *scene) {
-    size_t n = scene->triangles.size() - first;
-    std::vector<vec3> atVertex;
-    if (how == MESH_SMOOTH)
-        atVertex = VertexNormals(r, &scene->triangles[first], n);
-    std::vector<CornerNormals> made(n, CornerNormals{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}});
-    bool any = false;
-    for (size_t t = 0; t < n; t++) {
-        vec3 c[3];
-        for (int i = 0; i < 3; i++) {
-            int k = how == MESH_SMOOTH ? r->cornerVertex[3 * t + i] : r->cornerNormal[3 * t + i];
-            c[i] = k < 0 ? vec3{0, 0, 0} : how == MESH_SMOOTH ? atVertex[k] : r->normals[k];
-        }
-        if (IsZero(c[0]) || IsZero(c[1]) || IsZero(c[2]))
-            continue;
-        if (Dot(c[0] + c[1] + c[2], FaceNormal(&scene->triangles[first + t])) < 0)
-            c[0] = -c[0], c[1] = -c[1], c[2] = -c[2];
-        made[t] = {c[0], c[1], c[2]};
-        any = true;
-    }
-    if (!any)
-        return;
-    scene->cornerNormals.resize(first, CornerNormals{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}});
-    scene->cornerNormals.insert(scene->cornerNormals.end(), made.begin(), made.end());
-}
+// ---- a mesh statement's file, into the scene --------------------------------------------------
 
 bool ReadObjInto(FILE *file, const char *meshName, int material, const MeshWords *words,
                  size_t maxTriangles, const std::string &statement, Scene *scene,
@@ -320,8 +280,11 @@ bool ReadObjInto(FILE *file, const char *meshName, int material, const MeshWords
     if (!ReadLines(file, meshName, material, words->steps, r.fileNormals, maxTriangles, statement,
                    &r, &scene->triangles, error))
         return false;
-    if (r.keepCorners)
-        AddCornerNormals(&r, words->normals, first, scene);
+    if (r.keepCorners) {
+        MeshCorners corners = {r.cornerVertex.data(), r.cornerNormal.data(), r.vertices.size(),
+                               r.normals.data()};
+        AddCornerNormals(&corners, words->normals, first, meshName, scene);
+    }
     if (r.badNormal > 0)
         scene->warnings.push_back(std::string(meshName) + ":" + std::to_string(r.badNormal) +
                                   ": warning: normal index " + r.badIndex + " is out of range (" +

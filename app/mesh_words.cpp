@@ -4,6 +4,7 @@
 #include "app.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 
@@ -58,38 +59,73 @@ static bool MakeMeshStep(const std::string &word, const std::string &axis, const
     return step->axis >= 0;
 }
 
+// Whether a token is one of the mesh statement's words.
+static bool IsMeshWord(const std::string &t) {
+    return t == "scale" || t == "rotate" || t == "translate" || t == "fit" || t == "flat" ||
+           t == "smooth";
+}
+
+// Whether a token was meant as a number, good or bad: it starts as a decimal number does, or
+// spells NaN or infinity (which rt refuses as numbers, but which are no words of the statement).
+static bool MeantAsNumber(const std::string &t) {
+    std::string lower;
+    for (char c : t.substr(t[0] == '+' || t[0] == '-' ? 1 : 0, 3))
+        lower += (char)std::tolower((unsigned char)c);
+    return std::isdigit((unsigned char)t[0]) || t[0] == '+' || t[0] == '-' || t[0] == '.' ||
+           lower == "nan" || lower == "inf";
+}
+
+// How many values the transform word tokens[k] takes (0: it is no transform word), and *word:
+// the word, or "scale3" for `scale X Y Z`. `scale` takes three where the token after its first
+// is meant as a number (`scale 1 nan 1` is a scale of three, one of them bad, not a scale of 1
+// and an unknown word 'nan').
+static size_t WordValues(const std::vector<std::string> &tokens, size_t k, std::string *word) {
+    *word = tokens[k];
+    if (*word == "scale" && k + 2 < tokens.size() && !IsMeshWord(tokens[k + 2]) &&
+        MeantAsNumber(tokens[k + 2]))
+        *word = "scale3"; // `scale X Y Z`: three numbers follow
+    if (*word == "scale")
+        return 1;
+    if (*word == "rotate")
+        return 2;
+    return *word == "translate" || *word == "scale3" ? 3 : 0;
+}
+
+// Why a token where a word was expected, and which is none, is refused.
+static std::string NotAWord(const std::string &word) {
+    if (MeantAsNumber(word))
+        return "a number, " + Shown(word) +
+               ", where a word was expected (scale takes 1 or 3 numbers, rotate an axis and an "
+               "angle, translate 3, fit 1)";
+    return "unknown word " + Shown(word) +
+           " (expected scale, rotate, translate, fit, flat or smooth; if the file name has a "
+           "space, that is why: file names may not contain spaces)";
+}
+
 // One word and its values, tokens[*k..]; moves *k past them.
 static bool ParseMeshStep(const std::vector<std::string> &tokens, size_t *k, MeshStep *step,
                           std::string *error) {
-    std::string word = tokens[*k];
-    real unused;
-    std::string ignored;
-    if (word == "scale" && *k + 3 < tokens.size() && ParseReal(tokens[*k + 2], &unused, &ignored) &&
-        ParseReal(tokens[*k + 3], &unused, &ignored))
-        word = "scale3"; // `scale X Y Z`: three numbers follow
-    size_t count = word == "scale"       ? 1
-                   : word == "rotate"    ? 2
-                   : word == "translate" ? 3
-                   : word == "scale3"    ? 3
-                                         : 0;
+    std::string word;
+    size_t count = WordValues(tokens, *k, &word);
     if (count == 0) {
-        *error = "unknown word " + Shown(word) +
-                 " (expected scale, rotate, translate, fit, flat or smooth; if the file name has "
-                 "a space, that is why: file names may not contain spaces)";
+        *error = NotAWord(word);
         return false;
     }
+    const char *kScaleNumbers = "scale needs 1 or 3 finite numbers (scale 2, or scale 1 -1 1 to "
+                                "mirror in y)";
     if (*k + count >= tokens.size()) {
-        *error = tokens[*k] + ": expected " +
-                 (count == 1   ? "a factor (scale 2 doubles the mesh)"
-                  : count == 2 ? "an axis and an angle in degrees (rotate y 30)"
-                               : "three numbers X Y Z (translate 0 -1 -5)");
+        *error = word == "scale3" ? kScaleNumbers + std::string(", found ") +
+                                        std::to_string(tokens.size() - *k - 1)
+                 : count == 1 ? "scale: expected a factor (scale 2 doubles the mesh)"
+                 : count == 2 ? "rotate: expected an axis and an angle in degrees (rotate y 30)"
+                              : "translate: expected three numbers X Y Z (translate 0 -1 -5)";
         return false;
     }
     real v[3];
     size_t firstNumber = word == "rotate" ? 2 : 1; // rotate's first value is its axis
     for (size_t j = firstNumber; j <= count; j++) {
         if (!ParseReal(tokens[*k + j], &v[j - firstNumber], error)) {
-            *error = tokens[*k] + ": " + *error;
+            *error = (word == "scale3" ? std::string(kScaleNumbers) : tokens[*k]) + ": " + *error;
             return false;
         }
     }
@@ -151,9 +187,14 @@ bool ParseMeshWords(const std::vector<std::string> &tokens, size_t first, MeshWo
     }
     // Scale words that together shrink a mesh below the normal numbers would round its
     // vertices toward 0 and make it vanish without a word (a mesh grown beyond the range of
-    // numbers is refused at its first vertex)
+    // numbers is refused at its first vertex); and `fit S` makes its longest side S before them
     if (!(size >= std::numeric_limits<real>::min())) {
         *error = "scale: the mesh would shrink below the range of numbers";
+        return false;
+    }
+    if (words->fit > 0 && !(words->fit * size >= std::numeric_limits<real>::min())) {
+        *error = std::string("fit") + (size < 1 ? " and scale" : "") +
+                 ": the mesh would shrink below the range of numbers";
         return false;
     }
     return true;

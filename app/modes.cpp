@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -76,8 +77,10 @@ int ProbeMode(const Options *opt, const Scene *scene, const RenderSettings *sett
         LineStatus read = ReadTextLine(file, lineNumber, &line, &error);
         if (read == LINE_END)
             break;
-        if (read == LINE_BAD) { // not text: no line after this one can be trusted either
-            Complain(opt->raysFile + ":" + std::to_string(lineNumber) + ": " + error);
+        if (read == LINE_BAD || lineNumber == INT_MAX) { // not text (no line after this one can
+            // be trusted either), or line numbers past what an int holds: an endless file
+            Complain(opt->raysFile + ":" + std::to_string(lineNumber) + ": " +
+                     (read == LINE_BAD ? error : "too many lines"));
             status = 2;
             break;
         }

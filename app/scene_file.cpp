@@ -10,6 +10,7 @@
 
 #include <cctype>
 #include <cerrno>
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -164,6 +165,8 @@ static bool ParseSceneLines(FILE *file, const char *fileName, Scene *scene, std:
             break;
         if (status != LINE_READ)
             return Fail(&st, why, error);
+        if (st.line == INT_MAX) // line numbers are ints; an endless file stops here
+            return Fail(&st, "too many lines", error);
         Tokenize(line, &st.tokens);
         if (st.tokens.empty())
             continue;

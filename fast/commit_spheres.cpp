@@ -49,7 +49,8 @@ static int SphereItems(const std::vector<Sphere> &spheres, BuildItem *items, Nod
     for (size_t i = 0; i < spheres.size(); i++) {
         const Sphere *s = &spheres[i];
         vec3 c = s->center;
-        if (!(s->radius > 0) || !std::isfinite(s->radius) || !std::isfinite(c.x + c.y + c.z))
+        // (each coordinate on its own: a sum of finite ones, 1e308 + 1e308, may overflow)
+        if (!(s->radius > 0) || !std::isfinite(s->radius) || !IsFinite(c))
             continue;
         BuildItem item = {}; // (zero padding: the build reads it as the centre's fourth lane)
         for (int k = 0; k < 3; k++) {

@@ -1,5 +1,6 @@
 // robust/leave.cpp -- where a ray that leaves a triangle starts: off the surface, and in from its
-// edges, so that it starts inside every closed mesh the triangle belongs to.
+// edges, so that it starts inside every closed mesh the triangle belongs to; and on a smooth mesh,
+// where the curved surface would be (TerminatorOrigin, at the end).
 //
 // OffsetRayOrigin moves the hit point off the triangle's plane by the point's error bound, to the
 // side the new ray goes. That keeps the ray from meeting the triangle again, but it says nothing
@@ -152,6 +153,21 @@ static vec3 NearAnEdge(const Triangle *tri, const RayHit *hit, vec3 dir) {
     return OffsetRayOrigin(moved, error + least, hit->normal, dir);
 }
 
+// The barycentric weights of p, w_i = w[i] / nk from the view's areas (in double, scaled: no
+// product over- or underflows), each kept in [0, 1], as a hit point lies on its triangle only to
+// within rounding; a triangle the view cannot see gives each corner a third.
+static void Weights(const Triangle *tri, vec3 p, real w[3]) {
+    EdgeView v;
+    if (!SeeEdges(tri, p, &v)) {
+        w[0] = w[1] = w[2] = real(1) / 3;
+        return;
+    }
+    double w1 = std::clamp(v.w[1] / v.nk, 0.0, 1.0), w2 = std::clamp(v.w[2] / v.nk, 0.0, 1.0);
+    if (w1 + w2 > 1) // (past the far edge by a rounding: back onto it)
+        w1 = w1 / (w1 + w2), w2 = 1 - w1;
+    w[0] = (real)(1 - w1 - w2), w[1] = (real)w1, w[2] = (real)w2;
+}
+
 // The shadow terminator of a smooth mesh: its flat triangles lie inside the curved surface they
 // stand for, so a ray toward a light just above the smooth horizon, leaving the flat triangle, is
 // stopped by the next triangle over, and the lit side ends in dark, blocky facets. Hanika,
@@ -162,14 +178,12 @@ static vec3 NearAnEdge(const Triangle *tri, const RayHit *hit, vec3 dir) {
 // (the point above those planes) is not moved. The normals are taken on the side `toward` points
 // to. Returns the move; 0 on a flat triangle.
 static vec3 TerminatorShift(const Scene *scene, const RayHit *hit, vec3 toward) {
-    if (!HasCornerNormals(scene, hit))
-        return {0, 0, 0};
     const Triangle *t = &scene->triangles[hit->index];
     const CornerNormals *c = &scene->cornerNormals[hit->index];
     vec3 outward = hit->frontFace ? hit->normal : -hit->normal;
     real side = Dot(toward, outward) > 0 ? 1 : -1;
     real w[3];
-    Barycentric(t, hit->point, w);
+    Weights(t, hit->point, w);
     const vec3 corner[3] = {t->a, t->b, t->c}, normal[3] = {c->a, c->b, c->c};
     vec3 shift = {0, 0, 0};
     for (int i = 0; i < 3; i++) {
@@ -181,19 +195,10 @@ static vec3 TerminatorShift(const Scene *scene, const RayHit *hit, vec3 toward) 
     return shift;
 }
 
-// LeavingPoint and ShadowOrigin: the smooth surface's side is `toward`'s.
-static vec3 Leaving(const Scene *scene, const RayHit *hit, vec3 dir, vec3 toward) {
+vec3 LeavingPoint(const Scene *scene, const RayHit *hit, vec3 dir) {
     if (hit->shape != SHAPE_TRIANGLE) // a sphere has no edges
         return OffsetRayOrigin(hit, dir);
     const Triangle *tri = &scene->triangles[hit->index];
-    vec3 shift = TerminatorShift(scene, hit, toward); // robust: off a smooth mesh's terminator
-    if (shift.x != 0 || shift.y != 0 || shift.z != 0) {
-        // Moved off the triangle by the shift, which is far larger than the point's error: the
-        // sum's own rounding, and the shift's (a few roundings of its size), are its error
-        vec3 moved = hit->point + shift;
-        vec3 error = hit->pointError + Gamma(1) * Abs(moved) + Gamma(8) * Abs(shift);
-        return OffsetRayOrigin(moved, error, hit->normal, dir);
-    }
     real resolution;
     if (!FarFromEdges(tri, hit, &resolution))
         return NearAnEdge(tri, hit, dir);
@@ -201,10 +206,20 @@ static vec3 Leaving(const Scene *scene, const RayHit *hit, vec3 dir, vec3 toward
     return OffsetRayOrigin(hit->point, hit->pointError + least, hit->normal, dir);
 }
 
-vec3 LeavingPoint(const Scene *scene, const RayHit *hit, vec3 dir) {
-    return Leaving(scene, hit, dir, dir);
-}
-
-vec3 ShadowOrigin(const Scene *scene, const RayHit *hit, vec3 dir) {
-    return Leaving(scene, hit, dir, hit->normal);
+bool TerminatorOrigin(const Scene *scene, const RayHit *hit, vec3 toward, vec3 *origin) {
+    if (!HasCornerNormals(scene, hit))
+        return false;
+    vec3 shift = TerminatorShift(scene, hit, toward);
+    // The move must rise off the face to toward's side by more than its dot product's own
+    // rounding: corner normals that lean behind the face, or nearly along it, would otherwise
+    // start the ray behind the face it leaves
+    vec3 face = Dot(toward, hit->normal) < 0 ? -hit->normal : hit->normal;
+    if (!(Dot(shift, face) > Gamma(3) * Dot(Abs(shift), Abs(face))))
+        return false;
+    // The moved point's error: the hit point's, the sum's own rounding, and the shift's (a few
+    // roundings of its size)
+    vec3 moved = hit->point + shift;
+    vec3 error = hit->pointError + Gamma(1) * Abs(moved) + Gamma(8) * Abs(shift);
+    *origin = OffsetRayOrigin(moved, error, hit->normal, toward);
+    return true;
 }

@@ -4,8 +4,8 @@
 // Here: boxes along a ray (the
 // window a triangle's hit lies in, which the BVH's boxes share); the plane's t and its error bound
 // (plane.cpp); the watertight inside test's shear (watertight.cpp); and how a ray leaves a surface
-// without hitting it again (OffsetRayOrigin, LeavingPoint: leave.cpp, PassesOver, StartLeaving:
-// geometry.cpp and path.cpp).
+// without hitting it again (OffsetRayOrigin, LeavingPoint, TerminatorOrigin: leave.cpp,
+// PassesOver, StartLeaving: geometry.cpp, smooth.cpp and path.cpp).
 #pragma once
 #include "../ray.h"
 
@@ -271,13 +271,17 @@ inline vec3 OffsetRayOrigin(const RayHit *hit, vec3 dir) {
 // Where a ray that leaves `hit` in direction dir starts: the hit point moved off its surface
 // (OffsetRayOrigin), and for a triangle, where the hit lies too near an edge, a point moved in
 // from the edges first, so that the ray starts inside every closed mesh the triangle is part of
-// (leave.cpp). The triangle's corners are the scene's.
+// (leave.cpp). The triangle's corners are the scene's; a smooth mesh's triangle is left as a
+// flat one (TerminatorOrigin is the curved surface's).
 vec3 LeavingPoint(const Scene *scene, const RayHit *hit, vec3 dir);
 
-// LeavingPoint for a shadow ray, whose light may lie behind a smooth mesh's flat triangle while
-// its smooth normal faces it: the origin moves out to the smooth surface on the side the hit was
-// seen from (not the light's), and the ray then finds for itself whether it clears the mesh.
-vec3 ShadowOrigin(const Scene *scene, const RayHit *hit, vec3 dir);
+// On a smooth mesh's triangle, the origin moved out from the hit to where the curved surface would
+// be, on the side `toward` points to (Hanika's shift, leave.cpp), and off it as OffsetRayOrigin
+// moves a point. False where there is no such move: a flat triangle, a flat or concave region,
+// or corner normals that would put the origin on the face's other side (or within rounding of
+// it). The move is checked against nothing else: the caller proves the way there free of other
+// shapes (DeparturePoint, smooth.cpp).
+bool TerminatorOrigin(const Scene *scene, const RayHit *hit, vec3 toward, vec3 *origin);
 
 // Whether a ray in direction dir from a point that LeavingPoint moved off triangle hit, to the
 // side `side` points to, goes so plainly away from it that the shape loop may pass over it. The
@@ -298,8 +302,8 @@ inline bool PassesOver(const RayHit *hit, vec3 side, vec3 dir) {
 
 // Where such a ray starts its search: from t = 0, passing over the triangle it leaves where
 // PassesOver, else over nothing. A smooth mesh's triangle is never passed over: its ray may start
-// off the plane, moved out to the curved surface (LeavingPoint), where the plane's side no longer
-// tells whether it can be met again.
+// off the plane, moved out to the curved surface (TerminatorOrigin), where the plane's side no
+// longer tells whether it can be met again.
 inline SelfHit StartLeaving(const Scene *scene, const RayHit *hit, vec3 side, vec3 dir) {
     return PassesOver(hit, side, dir) && !HasCornerNormals(scene, hit)
                ? SelfHit{0, SHAPE_TRIANGLE, hit->index}

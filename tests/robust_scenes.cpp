@@ -268,3 +268,58 @@ int PixelsThatSeeOut(const Scene *scene, int seed) {
         green += image.pixels[p + 1] > 0;
     return green;
 }
+
+// ---- smooth meshes ---------------------------------------------------------------------------
+
+std::string IcosphereObj(int level) {
+    real t = real((1 + std::sqrt(5.0)) / 2);
+    std::vector<vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                           {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                           {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<int> f = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                          4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+                          6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
+    for (vec3 &p : v)
+        p = Normalize(p);
+    for (int l = 0; l < level; l++) {
+        std::vector<int> finer;
+        for (size_t k = 0; k < f.size(); k += 3) {
+            int m[3];
+            for (int e = 0; e < 3; e++) { // (edges split twice: closed enough for a test)
+                v.push_back(Normalize(v[f[k + e]] + v[f[k + (e + 1) % 3]]));
+                m[e] = (int)v.size() - 1;
+            }
+            finer.insert(finer.end(), {f[k], m[0], m[2], m[0], f[k + 1], m[1], m[2], m[1], f[k + 2],
+                                       m[0], m[1], m[2]});
+        }
+        f.swap(finer);
+    }
+    std::string text;
+    char line[256];
+    for (vec3 p : v) {
+        snprintf(line, sizeof line, "v %.17g %.17g %.17g\nvn %.17g %.17g %.17g\n", (double)p.x,
+                 (double)p.y, (double)p.z, (double)p.x, (double)p.y, (double)p.z);
+        text += line;
+    }
+    for (size_t k = 0; k < f.size(); k += 3) {
+        snprintf(line, sizeof line, "f %d//%d %d//%d %d//%d\n", f[k] + 1, f[k] + 1, f[k + 1] + 1,
+                 f[k + 1] + 1, f[k + 2] + 1, f[k + 2] + 1);
+        text += line;
+    }
+    return text;
+}
+
+bool AddMeshText(Scene *scene, const std::string &dir, const std::string &obj,
+                 const std::string &words, std::string *error) {
+    FILE *file = fopen((dir + "/mesh.obj").c_str(), "wb");
+    if (!file || fwrite(obj.data(), 1, obj.size(), file) != obj.size()) {
+        *error = dir + "/mesh.obj: cannot write";
+        if (file)
+            fclose(file);
+        return false;
+    }
+    fclose(file);
+    std::vector<std::string> tokens;
+    Tokenize("mesh mesh.obj wall " + words, &tokens);
+    return ReadMeshStatement(tokens, (dir + "/leak.scene").c_str(), 1, 0, 1000000, scene, error);
+}

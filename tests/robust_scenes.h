@@ -5,6 +5,8 @@
 
 #include "../ray.h"
 
+#include <string>
+
 // p turned by 0.7 radians about the axis (1, 2, 3) when `turn`, computed in long double and
 // rounded once: the corners of a turned shape are no longer on the grid of the unturned one.
 vec3 Turn(vec3 p, bool turn);
@@ -73,5 +75,17 @@ bool AddPrism(Scene *scene, double degrees, double l, const std::string &words);
 
 // The pixels with any green in the scene's image at one sample (seed: the path tracer's).
 int PixelsThatSeeOut(const Scene *scene, int seed);
+
+// ---- smooth meshes ---------------------------------------------------------------------------
+
+// An icosphere of radius 1 at the origin, 20 * 4^level triangles, with the true sphere's normals
+// at its vertices (`vn`), as OBJ text.
+std::string IcosphereObj(int level);
+
+// The OBJ text `obj` as the `mesh` statement reads it, with material 0 and the statement's words
+// (transform words, `smooth`, `flat`), into the scene: its triangles, and its corner normals where
+// it is smooth. The file is written as dir/mesh.obj. False with *error where it is refused.
+bool AddMeshText(Scene *scene, const std::string &dir, const std::string &obj,
+                 const std::string &words, std::string *error);
 
 #endif

@@ -101,6 +101,7 @@ void TestFiles();
 void TestMethods();
 void TestLayout();
 void TestSmooth();
+void TestSmoothWalls();
 void TestSpheres();
 void TestPacket();
 void TestPath();

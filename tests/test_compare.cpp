@@ -5,6 +5,7 @@
 #include "test.h"
 
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <string>
 
@@ -125,6 +126,38 @@ static void TestWorstPixels(const std::string &dir) {
           "--compare lists only pixels over the tolerance");
 }
 
+// Every image is read only as far as its header's size allows: /dev/zero is no image at its
+// first byte (rt used to read it until memory ran out); a PNG that goes on past what an image of
+// its size can hold (twice its pixels uncompressed, and 16 MiB), and a plain PPM whose samples
+// lie past 16 bytes each, stop there, named; a P6 is read to its last sample and no further.
+static void TestBoundedReading(const std::string &dir) {
+    std::string err, padded = "P3 2 1 255\n" + std::string(100000, ' ') + "0 0 0 0 0 0\n";
+    RunRay(dir, "--size 4 -o four.png", &err);
+    std::ofstream(dir + "/padded.ppm") << padded;
+    std::ofstream(dir + "/long.png", std::ios::binary)
+        << ReadFile(dir + "/four.png") << std::string((size_t)17 << 20, '\0');
+    const struct {
+        const char *pipe, *file, *message;
+    } bad[] = {
+        {"", "/dev/zero", "/dev/zero: not a PNG or PPM image"},
+        {"", "long.png",
+         "long.png: goes on past 16777320 bytes, more than a PNG of 4 x 4 can hold"},
+        {"", "padded.ppm", "padded.ppm: goes on past 107 bytes without its 2 x 1 pixels"},
+        {"(printf 'P3 1 1 255 '; cat /dev/zero) |", "/dev/stdin",
+         "/dev/stdin: the PPM ends before its 1 x 1 pixels"},
+    };
+    for (const auto &b : bad)
+        CHECK(RunRayAfter(dir, b.pipe, "--compare four.png " + std::string(b.file), &err) == 2 &&
+                  err.find(b.message) != std::string::npos,
+              std::string("--compare with ") + b.file + ": exit 2, " + b.message + " (" + err +
+                  ")");
+    CHECK(RunRayAfter(dir, "(printf 'P6 4 4 255\\n'; cat /dev/zero) |",
+                      "--compare four.png /dev/stdin --tolerance 255", &err) == 0,
+          "a P6 of 4 x 4 followed by an endless file: its 48 samples read, the rest not (" + err +
+              ")");
+    remove((dir + "/long.png").c_str());
+}
+
 void TestCompare(const std::string &dir) {
     std::string err;
     RunRay(dir, "--size 32 -o a.png", &err);
@@ -159,4 +192,5 @@ void TestCompare(const std::string &dir) {
           "a 16-bit PNG of (200, 100, 50) x 257 reads as the 8-bit (200, 100, 50)");
     TestComparePpm(dir);
     TestWorstPixels(dir);
+    TestBoundedReading(dir);
 }

@@ -6,10 +6,13 @@
 // 4 x 3 x L (the robustness tables' lengths), 10 x 3 x 4 boxes far from the origin and long
 // prisms with a sharp edge, turned by the `mesh` statement's own rotate words at random angles,
 // seen from near their middle in a random direction, a chain of 100 rays a pixel (at reflectance
-// 1 roulette ends no path). A glass ball inside sends refracted rays to the walls too.
+// 1 roulette ends no path). A glass ball inside sends refracted rays to the walls too. And smooth
+// meshes, whose rays start where their curved surface would be, near and touching the walls.
 // docs/robustness.md gives the ranges, and `make bench` a larger sweep with rates.
 #include "robust_scenes.h"
 #include "test.h"
+
+#include <string>
 
 #include <cstdio>
 
@@ -113,9 +116,69 @@ static void TestWedges() {
     }
 }
 
+// The cube [-1, 1]^3 as OBJ quads wound outward (`smooth` gives it normals), and with normals of
+// its own that lean every way, from the test's generator.
+static const char *kCube = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\n"
+                           "v 1 1 1\nv -1 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\n"
+                           "f 1 5 8 4\nf 2 3 7 6\n";
+static std::string RandomNormalsCube(TestRng *rng) {
+    std::string text = kCube;
+    text = text.substr(0, text.find("f "));
+    char line[128];
+    for (int k = 0; k < 8; k++) {
+        vec3 n = UnitDirection(Uniform(rng), Uniform(rng));
+        snprintf(line, sizeof line, "vn %.9g %.9g %.9g\n", (double)n.x, (double)n.y, (double)n.z);
+        text += line;
+    }
+    return text + "f 1//1 4//4 3//3 2//2\nf 5//5 6//6 7//7 8//8\nf 1//1 2//2 6//6 5//5\n"
+                  "f 4//4 8//8 7//7 3//3\nf 1//1 5//5 8//8 4//4\nf 2//2 3//3 7//7 6//6\n";
+}
+
+// Smooth meshes inside the 4 x 3 x 4 box, near and touching its walls, turned with it: an
+// icosphere of 80 faces with the true sphere's normals resting on the floor, a `smooth` cube
+// 0.05 below the ceiling, a cube with random normals against a side wall, and a `smooth` cube
+// with a face wound the other way in a corner. A ray leaving a smooth mesh starts where the
+// curved surface would be, up to a quarter of the cube's side off its faces: never past a wall.
+static void TestSmoothMeshesAtWalls() {
+    std::string dir = MakeTestDir("leaks");
+    if (dir.empty())
+        return;
+    std::string flipped = kCube;
+    flipped.replace(flipped.find("f 5 6 7 8"), 9, "f 8 7 6 5");
+    TestRng rng = {4404};
+    int leaks = 0, pixels = 0;
+    for (int turn = 0; turn < 3; turn++) {
+        std::string words = RandomTurn(&rng), error;
+        vec3 view = UnitDirection(Uniform(&rng), Uniform(&rng));
+        std::string random = RandomNormalsCube(&rng);
+        for (bool mirror : {false, true}) {
+            Scene scene = LeakScene(mirror, {0, 0, 0}, view, 32);
+            bool made = AddMeshBox(&scene, 4, 3, 4, words) &&
+                        AddMeshText(&scene, dir, IcosphereObj(1),
+                                    "scale 0.6 translate -1 -0.9 0.5 " + words, &error) &&
+                        AddMeshText(&scene, dir, kCube,
+                                    "smooth scale 0.5 translate 1 0.95 -0.5 " + words, &error) &&
+                        AddMeshText(&scene, dir, random, "scale 0.5 translate 1.5 -0.5 1 " + words,
+                                    &error) &&
+                        AddMeshText(&scene, dir, flipped,
+                                    "smooth scale 0.4 translate -1.6 1.1 -1.6 " + words, &error);
+            CHECK(made, "the box and the smooth meshes in it: " + error);
+            leaks += made ? PixelsThatSeeOut(&scene, turn) : 0, pixels += 32 * 32;
+        }
+    }
+    char what[200];
+    snprintf(what, sizeof what,
+             "smooth meshes touching and near the walls of a closed box, three turns, diffuse and "
+             "mirror walls: %d of %d pixels see out",
+             leaks, pixels);
+    CHECK(leaks == 0, what);
+    RemoveTestDir(dir);
+}
+
 void TestLeaks() {
     TestReportedLeak();
     TestTurnedBoxes();
     TestBoxesFarAway();
     TestWedges();
+    TestSmoothMeshesAtWalls();
 }

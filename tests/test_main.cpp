@@ -120,6 +120,7 @@ static const struct {
     {"mesh", TestMesh},
     {"mesh_rays", TestMeshRays},
     {"smooth", TestSmooth},
+    {"smooth_walls", TestSmoothWalls},
     {"leaks", TestLeaks},
     {"handout", TestHandout},
     {"lens", TestLens},

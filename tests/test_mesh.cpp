@@ -277,6 +277,8 @@ static bool ReadScene(const std::string &path, const std::string &text, Scene *s
     return ReadSceneFile(path.c_str(), scene, error);
 }
 
+static const bool kDouble = sizeof(real) == sizeof(double);
+
 // The unit square z = 0 as a quad; its outward side, (b - a) x (c - a), faces +z. The fan makes
 // triangle 0 below the diagonal y = x and triangle 1 above it.
 static const char *kQuad = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
@@ -316,6 +318,21 @@ static void TestMeshStatementErrors(const std::string &dir) {
          "scale 1e-30 scale 1e-30 scale 1e-30 scale 1e-30 scale 1e-30 scale 1e-30 scale 1e-30\n",
          2, "mesh: scale: the mesh would shrink below the range of numbers"},
         {"material m\nmesh . m\n", 2, "not a regular file"},
+        // `fit` refuses what `scale` refuses: a mesh whose longest side would be subnormal
+        {std::string("material m\nmesh quad.obj m fit ") + (kDouble ? "1e-320" : "1e-40") + "\n", 2,
+         "mesh: fit: the mesh would shrink below the range of numbers"},
+        {std::string("material m\nmesh quad.obj m fit ") +
+             (kDouble ? "1e-200 scale 1e-200" : "1e-20 scale 1e-20") + "\n",
+         2, "mesh: fit and scale: the mesh would shrink below the range of numbers"},
+        // A bad value names itself, and what the word wanted
+        {"material m\nmesh quad.obj m scale 1 nan 1\n", 2,
+         "mesh: scale needs 1 or 3 finite numbers (scale 2, or scale 1 -1 1 to mirror in y): not "
+         "a decimal number: 'nan'"},
+        {"material m\nmesh quad.obj m scale 2 3\n", 2,
+         "mesh: scale needs 1 or 3 finite numbers (scale 2, or scale 1 -1 1 to mirror in y), "
+         "found 2"},
+        {"material m\nmesh quad.obj m translate 1 2 3 4\n", 2,
+         "mesh: a number, '4', where a word was expected"},
         // A file name with a space is two tokens: the message says what may have happened
         {"material m\nmesh my quad.obj m\n", 2,
          "material 'quad.obj' is not defined (define it above; a mesh's file name may not "

@@ -9,6 +9,7 @@
 // the true sphere (the terminator), and a lamp inside a closed smooth box seen from outside
 // (nothing may leak through), at every scale.
 #include "../app/app.h"
+#include "robust_scenes.h"
 #include "test.h"
 
 #include <cmath>
@@ -170,6 +171,54 @@ static void TestSmoothAndFit(const std::string &dir) {
           "`fit` of a mesh that is one point: an error (" + error + ")");
 }
 
+// The corner normals rt will not interpolate, each with one warning a mesh naming the file: a
+// triangle whose corner normal leans behind its face, or opposes the other two (drawn flat: a
+// quarter of it would otherwise be shaded from behind); a zero `vn`; a `vn` the transform words
+// take beyond the range of numbers; and under `smooth`, faces wound against their neighbours.
+static void TestNormalWarnings(const std::string &dir) {
+#ifdef RT_FLOAT // (a normal that a scale of 1e-10 in x takes beyond float's range, or double's)
+    const char *kHugeNormal = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 1e30 0 1\nf 1//1 2//1 3//1\n";
+#else
+    const char *kHugeNormal = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 1e300 0 1\nf 1//1 2//1 3//1\n";
+#endif
+    struct {
+        const char *obj, *words, *warning;
+        size_t smooth, warnings; // how many triangles keep corner normals; how many warnings
+    } cases[] = {
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\nvn 0 0 -1\n"
+         "f 1//1 2//1 3//2\nf 2//1 4//1 3//1\n",
+         "", "m.obj: warning: 1 triangle has a corner normal that leans behind its face", 1, 1},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 -1\nvn 0 0 1\nf 1//1 2//1 3//2\n", "",
+         "m.obj: warning: 1 triangle has a corner normal that leans behind its face", 0, 1},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nvn 0 0 1\nf 1//1 2//2 3//2\n", "",
+         "m.obj:4: warning: vn: a normal of length 0 has no direction", 0, 1},
+        {kHugeNormal, "scale 1e-10 1 1",
+         "m.obj:4: warning: vn: the transform words take this normal beyond the range", 0, 1},
+        {"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\n"
+         "f 1 2 5\nf 2 3 5\nf 3 5 4\nf 1 5 4\nf 1 4 3 2\n",
+         // (and the face wound against the rest is flat: its averaged corners lean behind it)
+         "smooth", "m.obj: warning: smooth: 3 edges join faces wound opposite ways", 5, 2},
+    };
+    for (const auto &c : cases) {
+        Scene scene;
+        std::string error;
+        bool read = LoadScene(dir, c.obj, std::string("material m\nmesh m.obj m ") + c.words + "\n",
+                              &scene, &error);
+        size_t smooth = 0;
+        for (const CornerNormals &n : scene.cornerNormals)
+            smooth += MaxComponent(n.a) > 0;
+        std::string all;
+        for (const std::string &w : scene.warnings)
+            all += "'" + w + "' ";
+        bool warned =
+            scene.warnings.size() == c.warnings && all.find(c.warning) != std::string::npos;
+        CHECK(read && warned && smooth == c.smooth,
+              std::to_string(c.warnings) + " warning(s), one '" + c.warning + "...', and " +
+                  std::to_string(c.smooth) + " smooth triangle(s); got " + std::to_string(smooth) +
+                  " and " + all + error);
+    }
+}
+
 // ---- whole images ----------------------------------------------------------------------------
 
 // The linear light of every pixel of an n x n image of the scene.
@@ -186,46 +235,6 @@ static std::vector<double> Pixels(const Scene *scene, Methods methods) {
     return v;
 }
 
-// An icosphere of 20 * 4^level triangles with the true sphere's normals at its vertices, as
-// OBJ text.
-static std::string Icosphere(int level) {
-    real t = real((1 + std::sqrt(5.0)) / 2);
-    std::vector<vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
-                           {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
-                           {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    std::vector<int> f = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
-                          4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
-                          6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
-    for (vec3 &p : v)
-        p = Normalize(p);
-    for (int l = 0; l < level; l++) {
-        std::vector<int> finer;
-        for (size_t k = 0; k < f.size(); k += 3) {
-            int m[3];
-            for (int e = 0; e < 3; e++) { // (edges split twice: closed enough for a test)
-                v.push_back(Normalize(v[f[k + e]] + v[f[k + (e + 1) % 3]]));
-                m[e] = (int)v.size() - 1;
-            }
-            finer.insert(finer.end(), {f[k], m[0], m[2], m[0], f[k + 1], m[1], m[2], m[1], f[k + 2],
-                                       m[0], m[1], m[2]});
-        }
-        f.swap(finer);
-    }
-    std::string text;
-    char line[256];
-    for (vec3 p : v) {
-        snprintf(line, sizeof line, "v %.17g %.17g %.17g\nvn %.17g %.17g %.17g\n", (double)p.x,
-                 (double)p.y, (double)p.z, (double)p.x, (double)p.y, (double)p.z);
-        text += line;
-    }
-    for (size_t k = 0; k < f.size(); k += 3) {
-        snprintf(line, sizeof line, "f %d//%d %d//%d %d//%d\n", f[k] + 1, f[k] + 1, f[k + 1] + 1,
-                 f[k + 1] + 1, f[k + 2] + 1, f[k + 2] + 1);
-        text += line;
-    }
-    return text;
-}
-
 // The terminator: a low-polygon sphere lit from nearly behind its silhouette, against the true
 // sphere. Over the pixels both images show (neither is background): the pixels the true sphere
 // lights (above the ambient floor) that the mesh leaves at the floor, shadowed by its own facets,
@@ -240,8 +249,8 @@ static void TestTerminator(const std::string &dir) {
                             "material m diffuse 1 1 1\n";
         Scene mesh, sphere;
         std::string error;
-        bool read = LoadScene(dir, Icosphere(level), std::string(scene) + "mesh m.obj m\n", &mesh,
-                              &error) &&
+        bool read = LoadScene(dir, IcosphereObj(level), std::string(scene) + "mesh m.obj m\n",
+                              &mesh, &error) &&
                     LoadScene(dir, "", std::string(scene) + "sphere 0 0 0 1 m\n", &sphere, &error);
         CHECK(read, "the icosphere and the true sphere load: " + error);
         if (!read)
@@ -313,6 +322,7 @@ void TestSmooth() {
     TestInterpolation(dir);
     TestTransformedNormals(dir);
     TestSmoothAndFit(dir);
+    TestNormalWarnings(dir);
     TestTerminator(dir);
     TestNoLeak(dir);
     RemoveTestDir(dir);

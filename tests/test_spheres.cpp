@@ -196,6 +196,39 @@ static void TestTreeHardCases() {
                        "a tree: the same bits as the plain loop");
 }
 
+// Spheres at the end of the range of numbers: centres at the corners (+-M, +-M, +-M), M 1e308
+// (float 2e38), radius 0.7 M, so that a centre's coordinates sum beyond the range although each
+// is finite (the tree once left such spheres out, and a ray at one met nothing), among smaller
+// spheres. A tree answers as the plain loop: the ray of the report, and rays of every kind.
+static void TestSpheresAtTheEndOfTheRange() {
+    real most = real(kDouble ? 1e308 : 2e38);
+    TestRng rng = {308};
+    Scene scene = SpheresAt(30, most / 10, &rng);
+    for (Sphere &small : scene.spheres) // (kept off the ray of the report)
+        small.center.x = std::fabs(small.center.x) + most / 5;
+    for (int k = 0; k < 8; k++)
+        scene.spheres.push_back({{k & 1 ? most : -most, k & 2 ? most : -most, k & 4 ? most : -most},
+                                 real(0.7) * most,
+                                 0});
+    SpherePair p;
+    MakePair(scene, LAYOUT_BVH, &p);
+    Ray ray = {{0, -most / 10, 0},
+               {real(-0.6642548229051699), real(-0.7567862020024458), real(0.8270619320275827)}};
+    SelfHit start = kNoSelfHit;
+    RayHit hit;
+    bool found = FindNearestHitFrom(&p.committed, kRobustMethods, &ray, &start, kInfinity, &hit);
+    char what[160];
+    snprintf(what, sizeof what,
+             "a ray toward the sphere at (-M, -M, M) of radius 0.7 M, M = %g: the tree meets it "
+             "(found %d), as the plain loop does",
+             (double)most, (int)found);
+    CHECK(found && hit.index == 30 + 4 && SameSphereAnswers(&p, &ray, &start), what);
+    int differ = SphereDifferences(scene, LAYOUT_BVH, most / 10, 400, &rng);
+    CHECK(differ == 0, "spheres at (+-M, +-M, +-M) among smaller ones, in a tree: the same bits "
+                       "as the plain loop (" +
+                           std::to_string(differ) + " answers differ)");
+}
+
 // Ties: copies of one sphere at places 1, 4 and 6, behind it a larger one; the first copy wins,
 // committed or not, and leaving it, the next copy.
 static void TestSphereTies() {
@@ -243,5 +276,6 @@ void TestSpheres() {
     TestSameSphereHits();
     TestSphereTies();
     TestTreeHardCases();
+    TestSpheresAtTheEndOfTheRange();
     TestEditedSpheresAreNotStale();
 }
