@@ -38,7 +38,7 @@ PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 SCENES = $(basename $(wildcard scene_*.cpp))
 TOP = geometry camera shade path render smooth $(SCENES)
 ROBUST = robust/watertight robust/plane robust/rescale robust/leave
-FAST = fast/commit fast/build fast/kernel fast/commit_spheres
+FAST = fast/commit fast/commit_tree fast/build fast/kernel fast/commit_spheres
 APP = app/options app/modes app/image app/image_read app/text app/scene_file app/statements \
       app/mesh app/mesh_words app/probe app/views
 CORE = $(TOP) $(ROBUST) $(FAST) $(APP)

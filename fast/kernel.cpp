@@ -27,6 +27,7 @@
 // first step of the stable sphere test on kLanes spheres at once, the reference test for the rest.
 #include "kernel_packet.h"
 #include "kernel_walk.h"
+#include "kernel_wide.h"
 
 #include <cstdio>
 
@@ -42,12 +43,14 @@ static RT_INLINE void Inverses(vec3 d, real inverse[3]) {
     inverse[0] = quotient[0], inverse[1] = quotient[1], inverse[2] = quotient[2];
 }
 
-template <int kz, bool kVectors>
-static RT_INLINE bool HitLayout(const SceneLayout *layout, Search *s, RayHit *hit) {
-    if (layout->nodes.empty())
-        return TestBlocks<kz, kVectors>(layout->blocks.data(), 0, (int)layout->blocks.size(), s,
-                                        hit);
-    return WalkTree<kz, kVectors>(layout, s, hit);
+// The wide tree's search (kernel_wide.h) for a ray whose exact search is w->exact.
+template <int kz>
+static RT_INLINE bool HitWide(const SceneLayout *layout, WideSearch *w, RayHit *hit) {
+    const Search *s = &w->exact;
+    double o[3], omax = ScaledOrigin(s->ray, layout->wideExponent, o);
+    MakeWideRay(s->ray, o, omax, layout->wideExponent, s->tMin, s->tMax, &w->nodes);
+    MakeFilterRay<kz>(s->shear, o, omax, w->nodes.culls, &w->filter);
+    return WalkWide<kz>(layout, w, hit);
 }
 
 // The search for one ray whose main axis is kz: the ray sheared here, so that its numbers are
@@ -58,23 +61,18 @@ static RT_INLINE bool HitSheared(const Scene *scene, const SceneLayout *layout, 
                                  const Ray *ray, real tMin, real tMax, bool anyHit, RayHit *hit) {
     RayShear shear;
     ShearRayAxes<kz>(ray, &shear);
-    Search s = {scene->triangles.data(),
-                layout->setUps.data(),
-                ray,
-                &shear,
-                {},
-                skip,
-                tMin,
-                tMax,
-                -1,
-                anyHit,
-                {},
-                OriginPad(ray)};
+    WideSearch w; // (its exact part is all a list needs)
+    Search &s = w.exact;
+    s.triangles = scene->triangles.data(), s.setUps = layout->setUps.data();
+    s.ray = ray, s.shear = &shear, s.skip = skip, s.tMin = tMin, s.tMax = tMax, s.best = -1;
+    s.anyHit = anyHit, s.originPad = OriginPad(ray);
     Inverses(ray->dir, s.inverse);
+    if (!layout->wideNodes.empty())
+        return HitWide<kz>(layout, &w, hit);
     Splat(&s.lanes.ox, shear.origin.x), Splat(&s.lanes.oy, shear.origin.y);
     Splat(&s.lanes.oz, shear.origin.z), Splat(&s.lanes.sx, shear.sx);
     Splat(&s.lanes.sy, shear.sy);
-    return HitLayout<kz, kVectors>(layout, &s, hit);
+    return TestBlocks<kz, kVectors>(layout->blocks.data(), 0, (int)layout->blocks.size(), &s, hit);
 }
 
 // The whole search for one ray, compiled into each of the two copies below.
@@ -192,7 +190,7 @@ bool HitCommittedPacket(const Scene *scene, const SceneLayout *layout, const Ray
                         RayHit *hits, bool *found) {
 #if RT_DISPATCH
     int count = packet->count;
-    if (!layout->vectors || !layout->nodes.empty() || !layout->sphereNodes.empty() || count < 1 ||
+    if (!layout->vectors || !layout->wideNodes.empty() || !layout->sphereNodes.empty() || count < 1 ||
         count > kLanes || packet->kz < 0 || packet->kz > 2)
         return false;
     PacketSearch p;
@@ -205,6 +203,19 @@ bool HitCommittedPacket(const Scene *scene, const SceneLayout *layout, const Ray
     (void)scene, (void)layout, (void)packet, (void)hits, (void)found;
     return false;
 #endif
+}
+
+#if RT_DISPATCH
+RT_AVX2 static void SetUpAvx2(const Triangle *tri, TriangleSetUp *setUp) { MakeSetUp(tri, setUp); }
+#endif
+
+void KernelSetUp(const Triangle *tri, bool vectors, TriangleSetUp *setUp) {
+#if RT_DISPATCH
+    if (vectors)
+        return SetUpAvx2(tri, setUp);
+#endif
+    (void)vectors;
+    MakeSetUp(tri, setUp);
 }
 
 bool KernelHasVectors() {
@@ -269,7 +280,7 @@ bool SearchLayout(const Accelerator *self, const Scene *scene, Methods methods, 
 // one ray's search with more bookkeeping.
 const size_t kPacketShapes = 64;
 static bool PacketPays(const SceneLayout *layout, int count) {
-    return count >= 2 && layout->vectors && layout->nodes.empty() && layout->sphereNodes.empty() &&
+    return count >= 2 && layout->vectors && layout->wideNodes.empty() && layout->sphereNodes.empty() &&
            layout->triangleCount + layout->sphereCount <= kPacketShapes;
 }
 
@@ -311,10 +322,12 @@ static std::string DescribeTriangles(const Scene *scene, const SceneLayout *layo
         return text;
     }
     char tree[64] = "one list";
-    if (!layout->nodes.empty())
-        snprintf(tree, sizeof tree, "a BVH of %zu nodes of %d", layout->nodes.size(), kChildren);
+    bool wide = !layout->wideNodes.empty();
+    if (wide)
+        snprintf(tree, sizeof tree, "a BVH of %zu nodes of %d", layout->wideNodes.size(), kWide);
     snprintf(text, sizeof text, "triangles: %zu in %zu blocks of %d, %s (built in %.3g ms), %s",
-             scene->triangles.size(), layout->blocks.size(), kLanes, tree, buildSeconds * 1e3,
+             scene->triangles.size(), wide ? layout->wideBlocks.size() : layout->blocks.size(),
+             wide ? kWide : kLanes, tree, buildSeconds * 1e3,
              layout->vectors ? "blocks tested in AVX2 vectors" : "blocks tested lane by lane");
     return text;
 }

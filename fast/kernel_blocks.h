@@ -177,9 +177,27 @@ static RT_INLINE bool OutOfReach(const Box *box, int axis, const Search *s, real
     return first >= limit || last <= s->tMin;
 }
 
-// The full test for the survivors of blocks [first, first + count). A triangle at the same t
-// as the nearest so far counts only if it comes earlier in the scene (so the tMax it is tested
-// against is one step above). True if anything was hit.
+// The full test of one triangle that passed the first step, at place `index` (not to be
+// skipped), with its set-up: the reach test, then the rest of the reference test. A triangle at
+// the same t as the nearest so far counts only if it comes earlier in the scene (so the tMax it
+// is tested against is one step above). `sure`: its three edge functions are known to be of one
+// sign and none 0, so what IntersectSheared does next is RobustPlaneHit, called here with the
+// same arguments. True if hit (the search's nearest then).
+static RT_INLINE bool TestSurvivor(Search *s, int index, const TriangleSetUp *setUp, bool sure,
+                                   RayHit *hit) {
+    real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;
+    const Triangle *tri = &s->triangles[index];
+    if (OutOfReach(&setUp->box, setUp->flat, s, limit))
+        return false;
+    if (!(sure ? RobustPlaneHit(tri, setUp, s->ray, s->tMin, limit, hit)
+               : IntersectWatertight(tri, setUp, s->ray, s->shear, s->tMin, limit, hit)))
+        return false;
+    hit->index = s->best = index;
+    s->tMax = hit->t;
+    return true;
+}
+
+// The full test for the survivors of blocks [first, first + count). True if anything was hit.
 template <int kz, bool kVectors>
 static RT_INLINE bool TestBlocks(const TriangleBlock *blocks, int first, int count, Search *s,
                                  RayHit *hit) {
@@ -190,19 +208,9 @@ static RT_INLINE bool TestBlocks(const TriangleBlock *blocks, int first, int cou
                                  : SurvivorsOneByOne<kz>(b, s->shear, &sure);
         for (; live != 0; live &= live - 1) {
             int lane = LowestBit(live), index = b->index[lane];
-            if (index < 0 || index == s->skip)
+            if (index < 0 || index == s->skip ||
+                !TestSurvivor(s, index, &s->setUps[index], sure >> lane & 1u, hit))
                 continue;
-            real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;
-            const Triangle *tri = &s->triangles[index];
-            const TriangleSetUp *setUp = &s->setUps[index];
-            if (OutOfReach(&setUp->box, setUp->flat, s, limit))
-                continue;
-            if (!(sure >> lane & 1u
-                      ? RobustPlaneHit(tri, setUp, s->ray, s->tMin, limit, hit)
-                      : IntersectWatertight(tri, setUp, s->ray, s->shear, s->tMin, limit, hit)))
-                continue;
-            hit->index = s->best = index;
-            s->tMax = hit->t;
             found = true;
             if (s->anyHit)
                 return true;

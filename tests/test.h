@@ -100,6 +100,7 @@ void TestRanges();
 void TestFiles();
 void TestMethods();
 void TestLayout();
+void TestWide();
 void TestSmooth();
 void TestSpheres();
 void TestPacket();

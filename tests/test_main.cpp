@@ -107,6 +107,7 @@ static const struct {
     {"files", TestFiles},
     {"methods", TestMethods},
     {"layout", TestLayout},
+    {"wide", TestWide},
     {"spheres", TestSpheres},
     {"packet", TestPacket},
     {"path", TestPath},
