@@ -24,7 +24,7 @@
 const int kMaxSahDepth = 48;
 
 // The leaves: blocks of kWide triangles, at most kMaxWideLeafBlocks a leaf.
-const LeafShape kTriangleLeaves = {3, kMaxWideLeafBlocks, 1};
+const LeafShape kTriangleLeaves = {3, 1, 1};
 static_assert(1 << 3 == kWide, "kTriangleLeaves' shift is kWide's");
 
 // A node of the binary tree the heuristic builds, before it is collapsed to eight children a
@@ -154,66 +154,84 @@ static void NumberLeaves(Builder *b, NodeRef r, int *next, std::vector<NodeRef> 
     }
 }
 
-// The children of a wide node over binary node `top` (Embree's BVH8, made from a binary tree as
-// Wald, Benthin & Boulos 2008 do): its two children, then the inner child of largest area
-// opened, until there are kWide or only leaves. Returns how many.
-static int WideKids(Builder *b, NodeRef top, NodeRef kids[kWide]) {
-    int count = 1;
-    kids[0] = top;
-    if (At(b, top)->count == 0)
-        kids[0] = {top.task, top.place + 1}, kids[1] = Second(At(b, top), top), count = 2;
-    while (count < kWide) {
-        int open = -1;
-        for (int k = 0; k < count; k++)
-            if (At(b, kids[k])->count == 0 &&
-                (open < 0 || At(b, kids[k])->area > At(b, kids[open])->area))
-                open = k;
-        if (open < 0)
-            break;
-        NodeRef inner = kids[open];
-        for (int k = count++; k > open + 1; k--)
-            kids[k] = kids[k - 1];
-        kids[open] = {inner.task, inner.place + 1}, kids[open + 1] = Second(At(b, inner), inner);
+// How the collapse spends a wide node's kWide slots (Ylitie, Karras & Laine, "Efficient
+// incoherent ray traversal on GPUs through compressed wide BVHs", 2017): for each binary node,
+// the least cost of its subtree held in at most j slots, j = 1..kWide, and how. A node in one
+// slot is a leaf, or a wide node of its own that pays a visit; in more, its two children share
+// them. The cost is the surface area heuristic's: each box's area times what a ray that meets it
+// pays there (a visit, or its blocks' tests), which cost about the same.
+const float kVisitCost = 1, kBlockCost = 1;
+struct Slots {
+    float cost[kWide];         // cost[j - 1]: in at most j slots
+    unsigned char first[kWide]; // first[j - 1]: the slots its first child takes; 0: one slot
+    unsigned char own;          // as a wide node of its own: the slots its first child takes
+};
+
+// Each binary node's place among all parts' nodes (Slots are kept by it).
+static int Place(const std::vector<int> &offset, NodeRef r) { return offset[r.task] + r.place; }
+
+// The Slots of the subtree of r, children first.
+static void PriceSlots(Builder *b, NodeRef r, const std::vector<int> &offset, Slots *slots) {
+    const BinaryNode *node = At(b, r);
+    Slots *s = &slots[Place(offset, r)];
+    if (node->count > 0) {
+        float leaf = (float)node->area * kBlockCost * BlocksOf(node->count, kTriangleLeaves.shift);
+        for (int j = 0; j < kWide; j++)
+            s->cost[j] = leaf, s->first[j] = 0;
+        return;
     }
-    return count;
-}
-
-// x times 2^k (two exact steps, p1 p2 = 2^k, each a normal number) as a float, rounded down
-// (`down`) or up: rounded to nearest, then one step outward where that went the wrong way. (A
-// product that underflows double is off by less than 2^-1074, which the walk's allowance for
-// the ray, far above float's smallest step, covers.)
-static float ScaledFloat(double x, double p1, double p2, bool down) {
-    double scaled = x * p1 * p2;
-    float f = (float)scaled;
-    if (down ? (double)f > scaled : (double)f < scaled)
-        f = std::nextafter(f, down ? -INFINITY : INFINITY);
-    return f;
-}
-
-// 2^k as two factors, each a normal double (k may be up to about 2100 either way).
-static void PowerFactors(int k, double *p1, double *p2) {
-    *p1 = std::ldexp(1.0, k / 2), *p2 = std::ldexp(1.0, k - k / 2);
-}
-
-// Child k of a wide node: the box widened by kBoxAllowance of its size (what SlabInterval adds
-// for the box; the ray's share, OriginPad, the walk adds), scaled by 2^exponent and rounded
-// outward to float.
-static void SetWideChildBox(WideNode *node, int k, const Box *box, int exponent) {
-    double p1, p2;
-    PowerFactors(exponent, &p1, &p2);
-    double pad = (double)kBoxAllowance * (double)box->size;
-    for (int axis = 0; axis < 3; axis++) {
-        node->lo[axis][k] = ScaledFloat((double)box->lo[axis] - pad, p1, p2, true);
-        node->hi[axis][k] = ScaledFloat((double)box->hi[axis] + pad, p1, p2, false);
+    NodeRef left = {r.task, r.place + 1}, right = Second(node, r);
+    PriceSlots(b, left, offset, slots), PriceSlots(b, right, offset, slots);
+    const Slots *l = &slots[Place(offset, left)], *h = &slots[Place(offset, right)];
+    float shared[kWide + 1];
+    unsigned char first[kWide + 1];
+    for (int j = 2; j <= kWide; j++) { // j slots shared: k for the first child
+        shared[j] = INFINITY, first[j] = 1;
+        for (int k = 1; k < j; k++)
+            if (l->cost[k - 1] + h->cost[j - k - 1] < shared[j])
+                shared[j] = l->cost[k - 1] + h->cost[j - k - 1], first[j] = (unsigned char)k;
     }
+    float alone = (float)node->area * kVisitCost + shared[kWide];
+    s->cost[0] = alone, s->first[0] = 0, s->own = first[kWide];
+    for (int j = 2; j <= kWide; j++) {
+        bool share = shared[j] < alone;
+        s->cost[j - 1] = share ? shared[j] : alone, s->first[j - 1] = share ? first[j] : 0;
+    }
+}
+
+// The nodes that fill the slots of node r's subtree, at most j, in the binary tree's order.
+static void FillSlots(Builder *b, NodeRef r, int j, const std::vector<int> &offset,
+                      const Slots *slots, std::vector<NodeRef> *kids) {
+    const BinaryNode *node = At(b, r);
+    int first = node->count > 0 ? 0 : slots[Place(offset, r)].first[j - 1];
+    if (first == 0)
+        return kids->push_back(r);
+    FillSlots(b, {r.task, r.place + 1}, first, offset, slots, kids);
+    FillSlots(b, Second(node, r), j - first, offset, slots, kids);
+}
+
+// The children of the wide node over binary node `top`: its two children's slots as priced.
+// (A leaf at the top, a tree of one leaf, is the one child.)
+static int WideKids(Builder *b, NodeRef top, const std::vector<int> &offset, const Slots *slots,
+                    NodeRef kids[kWide]) {
+    const BinaryNode *node = At(b, top);
+    if (node->count > 0)
+        return kids[0] = top, 1;
+    std::vector<NodeRef> list;
+    int first = slots[Place(offset, top)].own;
+    FillSlots(b, {top.task, top.place + 1}, first, offset, slots, &list);
+    FillSlots(b, Second(node, top), kWide - first, offset, slots, &list);
+    std::copy(list.begin(), list.end(), kids);
+    return (int)list.size();
 }
 
 // The wide subtree over binary node `top`'s, depth-first, its leaves' blocks numbered from
 // `*next` on: the order NumberLeaves numbers them in, as each node's kids keep the binary
 // tree's order (WideKids), so Collapse needs no numbers from it. Returns the top node's place.
-static int Collapse(Builder *b, NodeRef top, int exponent, int *next, SceneLayout *layout) {
+static int Collapse(Builder *b, NodeRef top, const std::vector<int> &offset, const Slots *slots,
+                    int exponent, int *next, SceneLayout *layout) {
     NodeRef kids[kWide];
-    int count = WideKids(b, top, kids);
+    int count = WideKids(b, top, offset, slots, kids);
     int place = (int)layout->wideNodes.size();
     layout->wideNodes.emplace_back();
     WideNode node;
@@ -229,28 +247,10 @@ static int Collapse(Builder *b, NodeRef top, int exponent, int *next, SceneLayou
         if (kid->count > 0)
             node.child[k] = WideLeaf(*next, blocks), *next += blocks;
         else
-            node.child[k] = Collapse(b, kids[k], exponent, next, layout);
+            node.child[k] = Collapse(b, kids[k], offset, slots, exponent, next, layout);
     }
     layout->wideNodes[place] = node;
     return place;
-}
-
-// One wide block: the triangles at places index[0..n), lane by lane, in float (times 2^exponent
-// in the double build; as they are in the float build, whose block test is the exact one);
-// empty lanes repeat lane 0's corners with index -1, and are passed over by their index.
-static void FillWideBlock(const std::vector<Triangle> &triangles, const int *index, int n,
-                          int exponent, WideBlock *block) {
-    double p1, p2;
-    PowerFactors(exponent, &p1, &p2);
-    for (int lane = 0; lane < kWide; lane++) {
-        const Triangle *t = &triangles[index[lane < n ? lane : 0]];
-        const vec3 corner[3] = {t->a, t->b, t->c};
-        for (int k = 0; k < 9; k++) {
-            real x = Component(corner[k / 3], k % 3);
-            block->corner[k][lane] = kExactWideBlocks ? (float)x : (float)((double)x * p1 * p2);
-        }
-        block->index[lane] = lane < n ? index[lane] : -1;
-    }
 }
 
 // The blocks of leaves[first, last), each at its number, into `blocks`.
@@ -321,8 +321,14 @@ static void NumberAndCollapse(Builder *b, const std::vector<Triangle> &triangles
         binary += part.size();
     RunBoth(threads, number, [&] {
         layout->wideNodes.reserve((binary + 1) / 2 / (kWide - 1) + 1); // about as many as made
+        std::vector<int> offset; // each part's first node's place among all
+        int places = 0;
+        for (const std::vector<BinaryNode> &part : b->parts)
+            offset.push_back(places), places += (int)part.size();
+        std::unique_ptr<Slots[]> slots(new Slots[places]);
+        PriceSlots(b, {0, 0}, offset, slots.get());
         int blocks = 0;
-        Collapse(b, {0, 0}, exponent, &blocks, layout);
+        Collapse(b, {0, 0}, offset, slots.get(), exponent, &blocks, layout);
         while (!ready.load(std::memory_order_acquire))
             std::this_thread::yield();
         fill();

@@ -190,6 +190,12 @@ const char *KernelName();
 // to `threads` threads (CommitScene).
 void BuildTree(const std::vector<Triangle> &triangles, int threads, SceneLayout *layout);
 
+// Child k of a wide node given its box, and a wide block of the triangles at places
+// index[0..n) (commit.cpp): in float, times 2^exponent (WideNode, WideBlock).
+void SetWideChildBox(WideNode *node, int k, const Box *box, int exponent);
+void FillWideBlock(const std::vector<Triangle> &triangles, const int *index, int n, int exponent,
+                   WideBlock *block);
+
 // ---- commit_spheres.cpp: the committed spheres (for CommitScene) ----------------------------
 
 // layout->sphereBlocks in scene order, or for a scene with many spheres (or LAYOUT_BVH) a BVH over

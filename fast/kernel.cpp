@@ -50,6 +50,7 @@ static RT_INLINE bool HitWide(const SceneLayout *layout, WideSearch *w, RayHit *
     double o[3], omax = ScaledOrigin(s->ray, layout->wideExponent, o);
     MakeWideRay(s->ray, o, omax, layout->wideExponent, s->tMin, s->tMax, &w->nodes);
     MakeFilterRay<kz>(s->shear, o, omax, w->nodes.culls, &w->filter);
+    MakePlaneRay(s->ray, &w->plane);
     return WalkWide<kz>(layout, w, hit);
 }
 

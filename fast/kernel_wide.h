@@ -2,7 +2,7 @@
 // fast triangle loop (kernel.cpp): eight child boxes in float tested at once, the open children
 // visited nearest first, a leaf's blocks of eight triangles filtered in float, and only the
 // triangles that pass tested exactly, by the very functions the plain loop calls (TestBlocks'
-// steps, kernel_blocks.h). Included by kernel.cpp alone.
+// steps, kernel_blocks.h; the block test is kernel_filter.h). Included by kernel.cpp alone.
 //
 // Why float loses no hit. The exact search (the list, the plain loop) finds every hit inside its
 // triangle's window (plane.cpp): SlabInterval of the triangle's box, widened by kBoxAllowance of
@@ -18,47 +18,9 @@
 // all, and a ray that starts more than 2^40 of the scene's size away is walked without boxes:
 // both are wider than needed, never narrower.
 #pragma once
-#include "kernel_blocks.h"
+#include "kernel_filter.h"
+#include "kernel_plane.h"
 #include "kernel_setup.h"
-
-#include <cfloat>
-
-RT_LANES(Wide, float, kWide);                // eight floats
-typedef decltype(Wide() < Wide()) WideMask;  // per lane: all bits set, or none
-
-static RT_INLINE void LoadWide(Wide *v, const float *p) { memcpy(v, p, sizeof *v); }
-// (Eight copies in an array, copied: GCC 12 makes one broadcast of that, where a list of eight
-// x, or lanes written one by one, can become a chain of inserts.)
-static RT_INLINE void SplatWide(Wide *v, float x) {
-    float lanes[kWide];
-    for (int i = 0; i < kWide; i++)
-        lanes[i] = x;
-    memcpy(v, lanes, sizeof *v);
-}
-static RT_INLINE Wide AbsWide(const Wide *v) {
-    return Bitcast<Wide>(Bitcast<WideMask>(*v) & 0x7fffffff);
-}
-
-// One bit a lane of a mask whose lanes are all ones or none. Vector extensions have no
-// "movemask": each half keeps its lanes' own bits (1, 2, 4, 8 and 16, 32, 64, 128), the halves
-// are joined, and two swaps of halves gather the four lanes into one, a few instructions with
-// AVX2. Without shuffles, a loop over the lanes.
-static RT_INLINE unsigned WideBits(const WideMask *mask) {
-#if RT_SHUFFLES
-    typedef int FourInts __attribute__((vector_size(16)));
-    FourInts low = __builtin_shufflevector(*mask, *mask, 0, 1, 2, 3);
-    FourInts high = __builtin_shufflevector(*mask, *mask, 4, 5, 6, 7);
-    FourInts x = (low & FourInts{1, 2, 4, 8}) | (high & FourInts{16, 32, 64, 128});
-    x |= __builtin_shufflevector(x, x, 2, 3, 0, 1);
-    x |= __builtin_shufflevector(x, x, 1, 0, 3, 2);
-    return (unsigned)x[0];
-#else
-    unsigned bits = 0;
-    for (int i = 0; i < kWide; i++)
-        bits |= (unsigned)((*mask)[i] != 0) << i;
-    return bits;
-#endif
-}
 
 // The float next to f toward +infinity (up) or -infinity, for f not NaN and not already that
 // infinity: the bit pattern one step further from 0 or nearer to it, and from 0 the smallest
@@ -117,8 +79,6 @@ struct WideRay {
 // Beyond these, a ray is walked without boxes (|o| in scaled units), or without the box test
 // on one axis (a component of the scaled direction): see the top of this file.
 const double kWideFarthest = 0x1p40, kWideSmallest = 0x1p-40;
-// ρ's share for float's roundings, per unit of 2 + |o|.
-const double kWideRounding = 0x1p-19;
 
 static RT_INLINE void WalkEverything(WideRay *r) {
     for (int i = 0; i < 3; i++) {
@@ -236,98 +196,31 @@ static RT_INLINE void OrderChildren(const WideNode *n, unsigned open, const Wide
     *top += count - 1;
 }
 
-// ---- a leaf's blocks ------------------------------------------------------------------------
-
-// What the block test needs of the ray, in every lane: the watertight shear's origin (axes
-// renamed) and shear (RayShear), and in the double build the bound on what float changes.
-struct FilterRay {
-    Wide ox, oy, oz, sx, sy;
-    Wide across, square; // (double build) the error bound's terms: 8 e and 4 e^2 (FilterBlock)
-};
-
-// In the float build: the shear itself, as the exact test computes it. In double: the origin
-// in the blocks' units (o 2^exponent) and the shear, in float; a ray walked without boxes is
-// also tested without the filter (an infinite bound lets every triangle through).
-template <int kz>
-static RT_INLINE void MakeFilterRay(const RayShear *shear, const double o[3], double omax,
-                                    bool culls, FilterRay *f) {
-    const int X = (kz + 1) % 3, Y = (kz + 2) % 3;
-    SplatWide(&f->sx, (float)shear->sx), SplatWide(&f->sy, (float)shear->sy);
-    if (kExactWideBlocks) {
-        SplatWide(&f->ox, (float)shear->origin.x), SplatWide(&f->oy, (float)shear->origin.y);
-        SplatWide(&f->oz, (float)shear->origin.z);
-        return;
-    }
-    SplatWide(&f->ox, (float)o[X]), SplatWide(&f->oy, (float)o[Y]), SplatWide(&f->oz, (float)o[kz]);
-    double e = kWideRounding * (2 + omax);
-    SplatWide(&f->across, culls ? (float)(8 * e) : INFINITY);
-    SplatWide(&f->square, culls ? (float)(4 * e * e) : INFINITY);
-}
-
-// One corner of every lane sheared as ShearCorners does it (watertight.cpp): A = renamed
-// corner - origin, then x = A.x - sx A.z, y = A.y - sy A.z.
-template <int kz>
-static RT_INLINE void ShearWide(const WideBlock *b, int corner, const FilterRay *r, Wide *x,
-                                Wide *y) {
-    Wide Ax, Ay, Az;
-    LoadWide(&Ax, b->corner[3 * corner + (kz + 1) % 3]);
-    LoadWide(&Ay, b->corner[3 * corner + (kz + 2) % 3]);
-    LoadWide(&Az, b->corner[3 * corner + kz]);
-    Ax = Ax - r->ox, Ay = Ay - r->oy, Az = Az - r->oz;
-    *x = Ax - r->sx * Az;
-    *y = Ay - r->sy * Az;
-}
-
-// The lanes whose triangles survive the watertight test's first step (EdgesDisagree), as bits:
-// the edge functions U = Cx By - Cy Bx, V = Ax Cy - Ay Cx, W = Bx Ay - By Ax, and a triangle is
-// out where one is below -E and another above E. In the float build E = 0 and these are the
-// exact test's numbers (Survivors, kernel_blocks.h). In double, the float corners and origin
-// differ from the exact test's sheared corners (times 2^exponent) by at most e = 2^-19 (2 + |o|)
-// each (the top of this file counts the roundings: fewer than 10 u (2 + |o|)), so each edge
-// function differs from the one whose sign the exact test decides by at most e (4m + 2e) plus
-// float's two roundings of it, 2 gamma(2) m^2, where m is the largest |coordinate| of the
-// sheared corners: E = m (2^-20 m + 8e) + 4e^2 holds that with room for its own rounding. A
-// triangle out here is out there. *sure: the survivors whose three edge functions are beyond E
-// with one sign, so that the exact test passes them to the plane test for certain.
-template <int kz>
-static RT_INLINE unsigned FilterBlock(const WideBlock *b, const FilterRay *r, unsigned *sure) {
-    Wide ax, ay, bx, by, cx, cy, bound;
-    ShearWide<kz>(b, 0, r, &ax, &ay);
-    ShearWide<kz>(b, 1, r, &bx, &by);
-    ShearWide<kz>(b, 2, r, &cx, &cy);
-    Wide u = cx * by - cy * bx;
-    Wide v = ax * cy - ay * cx;
-    Wide w = bx * ay - by * ax;
-    if (kExactWideBlocks) {
-        SplatWide(&bound, 0);
-    } else {
-        Wide x = AbsWide(&ax), y = AbsWide(&ay);
-        Wide m = Select(x > y, x, y);
-        for (const Wide *c : {&bx, &by, &cx, &cy}) {
-            Wide size = AbsWide(c);
-            m = Select(size > m, size, m);
-        }
-        bound = m * (m * float(0x1p-20) + r->across) + r->square;
-    }
-    Wide below = -bound;
-    WideMask uNeg = u < below, vNeg = v < below, wNeg = w < below;
-    WideMask uPos = u > bound, vPos = v > bound, wPos = w > bound;
-    WideMask out = (uNeg | vNeg | wNeg) & (uPos | vPos | wPos);
-    unsigned live = ~WideBits(&out) & ((1u << kWide) - 1);
-    if (live == 0) // most blocks
-        return 0;
-    WideMask certain = (uNeg & vNeg & wNeg) | (uPos & vPos & wPos);
-    *sure = live & WideBits(&certain);
-    return live;
-}
-
 // The search of the wide tree: the exact search's state (kernel_blocks.h), the ray for the
-// nodes and for the blocks.
+// nodes, for the blocks and for tier 1 of the plane's t (kernel_plane.h).
 struct WideSearch {
     Search exact;
     WideRay nodes;
     FilterRay filter;
+    PlaneRay plane;
 };
+
+// TestSurvivor's steps (kernel_blocks.h) for a triangle of the wide tree, where the edge
+// functions' signs are sure with RobustPlaneHit's first tier in the kernel (KernelPlaneHit).
+static RT_INLINE bool TestWideSurvivor(WideSearch *w, int index, const TriangleSetUp *setUp,
+                                       bool sure, RayHit *hit) {
+    Search *s = &w->exact;
+    real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;
+    const Triangle *tri = &s->triangles[index];
+    if (OutOfReach(&setUp->box, setUp->flat, s, limit))
+        return false;
+    if (!(sure ? KernelPlaneHit(tri, setUp, s->ray, &w->plane, s->tMin, limit, hit)
+               : IntersectWatertight(tri, setUp, s->ray, s->shear, s->tMin, limit, hit)))
+        return false;
+    hit->index = s->best = index;
+    s->tMax = hit->t;
+    return true;
+}
 
 // A leaf's blocks (`code`: WideNode::child), each filtered, and its survivors tested exactly
 // with the set-up made here (the layout keeps none for the tree: TestSurvivor, kernel_blocks.h).
@@ -346,7 +239,7 @@ static RT_INLINE bool TestWideLeaf(const WideBlock *blocks, int code, WideSearch
                 continue;
             TriangleSetUp setUp;
             MakeSetUp(&s->triangles[index], &setUp);
-            if (!TestSurvivor(s, index, &setUp, sure >> lane & 1u, hit))
+            if (!TestWideSurvivor(w, index, &setUp, sure >> lane & 1u, hit))
                 continue;
             found = true;
             if (w->nodes.culls)
