@@ -146,12 +146,20 @@ build/student: bench/student.cpp
 	@mkdir -p $(@D)
 	$(CXX) -O2 -std=c++17 -o $@ $< $(PNG_CFLAGS) $(PNG_LIBS)
 
-# Embree 3 beside rt's triangle search (bench/peer_embree.cpp), built by bench.sh only where
-# Embree is installed (Debian's libembree-dev).
-build/peer_embree: build/double/bench/peer_embree.o $(DOUBLE_CORE)
-	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS) -lembree3
+# make bench's peer rows (bench/peers.sh): rt's side in double and float (bench/peer_rt.cpp), and
+# Embree 3 (bench/peer_embree.cpp), built only where Embree is installed (Debian's libembree-dev).
+# (tinybvh and bvh v2, when given, are built by bench/peers.sh itself, under build/peers/.)
+build/peer_rt: build/double/bench/peer_rt.o $(DOUBLE_CORE)
+	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
-bench: ray ray_float build/double/rtbench build/float/rtbench build/student build/make_mesh
+build/peer_rt_float: build/float/bench/peer_rt.o $(FLOAT_CORE)
+	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
+
+build/peer_embree: bench/peer_embree.cpp bench/peers.h build/config
+	$(CXX) $(CXXFLAGS) -std=c++17 -Wall -Wextra -o $@ bench/peer_embree.cpp -lembree3
+
+bench: ray ray_float build/double/rtbench build/float/rtbench build/student build/make_mesh \
+       build/peer_rt build/peer_rt_float
 	@sh bench/bench.sh
 
 # The student kit: build/starter/rt-starter and build/starter/rt-starter.tar.gz, rt's teaching core
