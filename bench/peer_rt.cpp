@@ -11,6 +11,7 @@ static void MakeScene(const std::vector<float> &v, const std::vector<unsigned> &
     InitScene(scene);
     scene->materials = {{"white", {1, 1, 1}, {1, 1, 1}, 0, 1, 0, 0, {0, 0, 0}}};
     auto corner = [&](unsigned k) { return vec3{v[3 * k], v[3 * k + 1], v[3 * k + 2]}; };
+    scene->triangles.reserve(f.size() / 3);
     for (size_t t = 0; t < f.size(); t += 3)
         scene->triangles.push_back({corner(f[t]), corner(f[t + 1]), corner(f[t + 2]), 0});
 }

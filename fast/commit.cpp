@@ -46,7 +46,7 @@ static float ScaledFloat(double x, double p1, double p2, bool down) {
     double scaled = x * p1 * p2;
     float f = (float)scaled;
     if (down ? (double)f > scaled : (double)f < scaled)
-        f = std::nextafter(f, down ? -INFINITY : INFINITY);
+        f = FloatStep(f, !down);
     return f;
 }
 

@@ -3,15 +3,18 @@
 //
 // main commits the scene once per render (CommitScene, commit.cpp, after Embree's
 // rtcCommitScene): the triangles and spheres copied into blocks, coordinate by coordinate, and
-// for a scene large enough that it pays, a bounding volume hierarchy over the triangles (build.cpp
-// finds the splits). The search (kernel.cpp) tests a block of shapes at a time (with its
-// parts: kernel_blocks.h, kernel_spheres.h, kernel_walk.h), and a pixel's eye rays together
-// (kernel_packet.h), with GCC/clang vector extensions where the processor has AVX2 (one binary
-// picks at run time) and lane by lane elsewhere, with the same answers.
+// for a scene large enough that it pays, a bounding volume hierarchy over the triangles
+// (commit_tree.cpp; build.cpp finds the splits), and over many spheres. The search (kernel.cpp)
+// tests a block of shapes at a time (with its parts: kernel_blocks.h, kernel_spheres.h,
+// kernel_wide.h, kernel_walk.h), and a pixel's eye rays together (kernel_packet.h), with GCC/clang
+// vector extensions where the processor has AVX2 (one binary picks at run time) and lane by lane
+// elsewhere, with the same answers.
 #pragma once
 #include "../robust/robust.h"
 
+#include <cfloat>
 #include <cstddef>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -36,9 +39,9 @@ struct SphereBlock {
     unsigned filled;                    // bit `lane` set: the lane holds a sphere
 };
 
-// A node of the BVH, four children wide (Embree's BVH4): its children's boxes, as TriangleBox
-// makes them and coordinate by coordinate, so the kernel tests all four at once (SlabInterval
-// widens them). A child is another node, a leaf (a run of blocks), or missing.
+// A node of the spheres' BVH, four children wide (Embree's BVH4): its children's boxes,
+// coordinate by coordinate, so the kernel tests all four at once (SlabInterval widens them). A
+// child is another node, a leaf (a run of blocks), or missing.
 const int kChildren = 4;
 struct BvhNode {
     real lo[3][kChildren], hi[3][kChildren]; // each child's box, axis by axis
@@ -70,6 +73,19 @@ const int kWide = 8;
 // In the float build the wide blocks hold the triangles' own corners, and the block test is the
 // exact one; in double they hold float copies, and the test only filters (kernel_wide.h).
 const bool kExactWideBlocks = sizeof(real) == sizeof(float);
+
+// The float next to f toward +infinity (up) or -infinity, for f not NaN and not already that
+// infinity: the bit pattern one step further from 0 or nearer to it, and from 0 the smallest
+// subnormal. (std::nextafter, without the library call.)
+inline float FloatStep(float f, bool up) {
+    if (f == 0)
+        return up ? FLT_TRUE_MIN : -FLT_TRUE_MIN;
+    uint32_t bits;
+    memcpy(&bits, &f, sizeof bits);
+    bits = (f > 0) == up ? bits + 1 : bits - 1;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
 
 // A node: each child's box, axis by axis, rounded outward from the box widened by
 // kBoxAllowance of its size; and each child: another node (child >= 0, its place), a leaf

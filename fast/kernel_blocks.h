@@ -156,6 +156,18 @@ struct Search {
     real inverse[3], originPad; // 1 / d by axis and OriginPad, for OutOfReach
 };
 
+// 1 / d on each axis, as MakeSlabRay divides (each lane rounds as the scalar division does),
+// for OutOfReach: one vector division, made every search, and built in registers (three numbers
+// stored one by one and read back as one vector would wait for the stores).
+static RT_INLINE void Inverses(vec3 d, real inverse[3]) {
+    Lanes one, lanes;
+    Splat(&one, 1);
+    lanes = one;
+    lanes[0] = d.x, lanes[1] = d.y, lanes[2] = d.z;
+    Lanes quotient = one / lanes;
+    inverse[0] = quotient[0], inverse[1] = quotient[1], inverse[2] = quotient[2];
+}
+
 // A triangle whose window (plane.cpp) lies wholly at or beyond `limit`, or at or before tMin:
 // it cannot be hit, since every hit lies in its triangle's window, and the window lies inside
 // the box's slab on any one axis (SlabInterval, whose steps on each axis are these, with the

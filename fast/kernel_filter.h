@@ -9,6 +9,7 @@
 // (FilterBlock says how much): the exact test would refuse it too.
 #pragma once
 #include "kernel_blocks.h"
+#include "kernel_setup.h"
 
 #include <cfloat>
 
@@ -65,7 +66,7 @@ struct FilterRay {
 // in the blocks' units (o 2^exponent) and the shear, in float; a ray walked without boxes is
 // also tested without the filter (an infinite bound lets every triangle through).
 template <int kz>
-static RT_INLINE void MakeFilterRay(const RayShear *shear, const double o[3], double omax,
+static RT_INLINE void MakeFilterRay(const RayShear *shear, const Double4 *o, double omax,
                                     bool culls, FilterRay *f) {
     const int X = (kz + 1) % 3, Y = (kz + 2) % 3;
     SplatWide(&f->sx, (float)shear->sx), SplatWide(&f->sy, (float)shear->sy);
@@ -74,7 +75,8 @@ static RT_INLINE void MakeFilterRay(const RayShear *shear, const double o[3], do
         SplatWide(&f->oz, (float)shear->origin.z);
         return;
     }
-    SplatWide(&f->ox, (float)o[X]), SplatWide(&f->oy, (float)o[Y]), SplatWide(&f->oz, (float)o[kz]);
+    SplatWide(&f->ox, (float)(*o)[X]), SplatWide(&f->oy, (float)(*o)[Y]);
+    SplatWide(&f->oz, (float)(*o)[kz]);
     double e = kWideRounding * (2 + omax);
     SplatWide(&f->across, culls ? (float)(8 * e) : INFINITY);
     SplatWide(&f->square, culls ? (float)(4 * e * e) : INFINITY);

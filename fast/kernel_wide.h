@@ -22,18 +22,6 @@
 #include "kernel_plane.h"
 #include "kernel_setup.h"
 
-// The float next to f toward +infinity (up) or -infinity, for f not NaN and not already that
-// infinity: the bit pattern one step further from 0 or nearer to it, and from 0 the smallest
-// subnormal. (std::nextafter, without the library call.)
-static RT_INLINE float FloatStep(float f, bool up) {
-    if (f == 0)
-        return up ? FLT_TRUE_MIN : -FLT_TRUE_MIN;
-    uint32_t bits;
-    memcpy(&bits, &f, sizeof bits);
-    bits = (f > 0) == up ? bits + 1 : bits - 1;
-    memcpy(&f, &bits, sizeof f);
-    return f;
-}
 
 // x as a float no greater (down) or no less than x.
 static RT_INLINE float FloatBelow(double x) {
@@ -91,38 +79,38 @@ static RT_INLINE void WalkEverything(WideRay *r) {
     r->tMax = INFINITY, r->scale = {0, 0}, r->culls = false;
 }
 
-// The origin in the wide tree's units, o 2^exponent, and its largest |coordinate|.
-static RT_INLINE double ScaledOrigin(const Ray *ray, int exponent, double o[3]) {
-    PowerPair p = PowerOfTwoPair(exponent);
-    o[0] = Times(ray->origin.x, p), o[1] = Times(ray->origin.y, p), o[2] = Times(ray->origin.z, p);
-    double most = std::fabs(o[0]) > std::fabs(o[1]) ? std::fabs(o[0]) : std::fabs(o[1]);
-    return most > std::fabs(o[2]) ? most : std::fabs(o[2]);
+// The origin in the wide tree's units, o 2^exponent (p: 2^exponent as a PowerPair), lane by
+// lane, and its largest |coordinate|.
+static RT_INLINE double ScaledOrigin(const Ray *ray, PowerPair p, Double4 *o) {
+    // (the fourth lane repeats z: a 0 there takes a move that valgrind 3.19 cannot follow)
+    *o = Double4{ray->origin.x, ray->origin.y, ray->origin.z, ray->origin.z} * p.first * p.second;
+    return LargestOfThree(Magnitudes(*o));
 }
 
 // *r for the ray (its direction's largest component within kDirectionWindow: ScaleRay),
-// searched in (tMin, tMax); o, omax: ScaledOrigin's.
-static RT_INLINE void MakeWideRay(const Ray *ray, const double o[3], double omax, int exponent,
+// searched in (tMin, tMax); o, omax: ScaledOrigin's. (The three axes in the lanes of one vector:
+// one division for the three 1/d.)
+static RT_INLINE void MakeWideRay(const Ray *ray, const Double4 *o, double omax, PowerPair p,
                                   real tMin, real tMax, WideRay *r) {
     if (!(omax <= kWideFarthest))
         return WalkEverything(r);
-    const double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
     int j = -BinaryExponent(MaxComponent(ray->dir)); // d 2^j: largest in [1, 2)
-    double dj = PowerOfTwoD(j);
-    double rho = Times(OriginPad(ray), PowerOfTwoPair(exponent)) + kWideRounding * (2 + omax);
+    Double4 d = Double4{ray->dir.x, ray->dir.y, ray->dir.z, 1} * PowerOfTwoD(j);
+    Double4 inverse = 1 / d, nan = {NAN, NAN, NAN, NAN}; // (NaN: the axis restricts nothing)
+    inverse = Select((Magnitudes(d) < kWideSmallest) & (d != 0), nan, inverse);
+    double rho = Times(OriginPad(ray), p) + kWideRounding * (2 + omax);
+    Double4 lo = *o + rho, hi = *o - rho; // the origin moved toward a lo plane, a hi plane
     for (int i = 0; i < 3; i++) {
-        double scaled = d[i] * dj, inverse = 1 / scaled;
-        if (scaled != 0 && !(std::fabs(scaled) >= kWideSmallest))
-            inverse = NAN; // (NaN: this axis restricts nothing)
-        bool backward = std::signbit(inverse);
-        size_t lo = offsetof(WideNode, lo) + i * sizeof(float) * kWide;
-        size_t hi = offsetof(WideNode, hi) + i * sizeof(float) * kWide;
-        float loOrigin = (float)(o[i] + rho), hiOrigin = (float)(o[i] - rho);
-        SplatWide(&r->inverse[i], (float)inverse);
+        bool backward = std::signbit(inverse[i]);
+        size_t loPlane = offsetof(WideNode, lo) + i * sizeof(float) * kWide;
+        size_t hiPlane = offsetof(WideNode, hi) + i * sizeof(float) * kWide;
+        float loOrigin = (float)lo[i], hiOrigin = (float)hi[i];
+        SplatWide(&r->inverse[i], (float)inverse[i]);
         SplatWide(&r->entryOrigin[i], backward ? hiOrigin : loOrigin);
         SplatWide(&r->exitOrigin[i], backward ? loOrigin : hiOrigin);
-        r->entry[i] = backward ? hi : lo, r->exit[i] = backward ? lo : hi;
+        r->entry[i] = backward ? hiPlane : loPlane, r->exit[i] = backward ? loPlane : hiPlane;
     }
-    r->scale = PowerOfTwoPair(exponent - j), r->culls = true; // (P 2^e - o 2^e) / (d 2^j)
+    r->scale = {p.first, p.second * PowerOfTwoD(-j)}, r->culls = true; // t 2^exponent 2^-j
     SplatWide(&r->tMin, FloatBelow(Times(tMin, r->scale)));
     r->tMax = FloatAbove(Times(tMax, r->scale));
 }
@@ -203,6 +191,7 @@ struct WideSearch {
     WideRay nodes;
     FilterRay filter;
     PlaneRay plane;
+    bool reach; // exact.inverse is made (at the first survivor: OutOfReach's 1/d)
 };
 
 // TestSurvivor's steps (kernel_blocks.h) for a triangle of the wide tree, where the edge
@@ -212,6 +201,8 @@ static RT_INLINE bool TestWideSurvivor(WideSearch *w, int index, const TriangleS
     Search *s = &w->exact;
     real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;
     const Triangle *tri = &s->triangles[index];
+    if (!w->reach)
+        Inverses(s->ray->dir, s->inverse), w->reach = true;
     if (OutOfReach(&setUp->box, setUp->flat, s, limit))
         return false;
     if (!(sure ? KernelPlaneHit(tri, setUp, s->ray, &w->plane, s->tMin, limit, hit)
