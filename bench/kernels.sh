@@ -1,6 +1,7 @@
 #!/bin/sh
 # bench/kernels.sh OUT REPORT RUNS: rt's triangle search beside the fastest CPU kernels (bench.sh
-# runs it from peers.sh; OUT is its scratch folder), appended to REPORT: eye rays at icospheres of
+# runs it from peers.sh; OUT is its scratch folder), written to build/bench/kernels.md and
+# appended to REPORT: eye rays at icospheres of
 # 1,280, 81,920 and 1,310,720 triangles (rays a second, build time, bytes a triangle), and the
 # cracks of each (bench/peers.h says how each is aimed). Each library that is not on the machine
 # is skipped with a line that says how to get it:
@@ -9,7 +10,9 @@
 #   bvh v2:   git clone https://github.com/madmann91/bvh; BVH2=path/to/bvh make bench
 # Their sources are copied into build/peers/ and built there; nothing of them is part of rt.
 set -eu
-out=$1 report=$2 runs=$3
+out=$1 whole=$2 runs=$3
+report=build/bench/kernels.md # (its own file too, appended to the whole report at the end)
+: >"$report"
 . bench/stats.sh
 peers=build/peers
 mkdir -p "$peers"
@@ -137,3 +140,4 @@ for level in 6 8; do
     done
 done
 echo "bench: cracks done" >&2
+cat "$report" >>"$whole"

@@ -52,7 +52,8 @@ static RT_INLINE unsigned WideBits(const WideMask *mask) {
 
 // The share, per unit of 2 + |o| (o the ray's origin in the scaled units, where every corner is
 // below 2), that bounds what float's roundings move a plane or a corner: 32 u of float, where
-// fewer than 10 are spent (kernel_wide.h and FilterBlock count them).
+// fewer than 10 are spent (kernel_wide.h and FilterBlock count them). (A subnormal's rounding is
+// absolute, at most 2^-150, far below 2^-19 of 2.)
 const double kWideRounding = 0x1p-19;
 
 // What the block test needs of the ray, in every lane: the watertight shear's origin (axes
@@ -99,9 +100,11 @@ static RT_INLINE void ShearWide(const WideBlock *b, int corner, const FilterRay 
 // The lanes whose triangles survive the watertight test's first step (EdgesDisagree), as bits:
 // the edge functions U = Cx By - Cy Bx, V = Ax Cy - Ay Cx, W = Bx Ay - By Ax, and a triangle is
 // out where one is below -E and another above E. In the float build E = 0 and these are the
-// exact test's numbers (Survivors, kernel_blocks.h). In double, the float corners and origin
-// differ from the exact test's sheared corners (times 2^exponent) by at most e = 2^-19 (2 + |o|)
-// each (the top of this file counts the roundings: fewer than 10 u (2 + |o|)), so each edge
+// exact test's numbers (Survivors, kernel_blocks.h). In double, a sheared corner in float differs
+// from the exact test's (times 2^exponent) by at most e = 2^-19 (2 + |o|): the corner's, the
+// origin's and the shear's rounding to float, float's three operations, each at most u of
+// 2 + |o| (|shear| <= 1), and the exact test's own roundings in double, far smaller, are under
+// 10 u of it, where e holds 32. So each edge
 // function differs from the one whose sign the exact test decides by at most e (4m + 2e) plus
 // float's two roundings of it, 2 gamma(2) m^2, where m is the largest |coordinate| of the
 // sheared corners: E = m (2^-20 m + 8e) + 4e^2 holds that with room for its own rounding. A

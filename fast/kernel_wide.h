@@ -22,7 +22,6 @@
 #include "kernel_plane.h"
 #include "kernel_setup.h"
 
-
 // x as a float no greater (down) or no less than x.
 static RT_INLINE float FloatBelow(double x) {
     float f = (float)x;
