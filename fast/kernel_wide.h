@@ -67,10 +67,13 @@ struct WideRay {
 // on one axis (a component of the scaled direction): see the top of this file.
 const double kWideFarthest = 0x1p40, kWideSmallest = 0x1p-40;
 
+// The walk for a ray that starts too far away: every box entered. The x axis alone is tested,
+// from 0 with 1/d = 1, which takes every box whose lo.x <= hi.x, that is every child but a
+// missing one (the others' NaN restricts nothing); every window then begins at its lo.x.
 static RT_INLINE void WalkEverything(WideRay *r) {
     for (int i = 0; i < 3; i++) {
         SplatWide(&r->entryOrigin[i], 0), SplatWide(&r->exitOrigin[i], 0);
-        SplatWide(&r->inverse[i], 1);
+        SplatWide(&r->inverse[i], i == 0 ? 1 : NAN);
         r->entry[i] = offsetof(WideNode, lo) + i * sizeof(float) * kWide;
         r->exit[i] = offsetof(WideNode, hi) + i * sizeof(float) * kWide;
     }

@@ -4,8 +4,11 @@
 // The search through the tree is held to the plain loop's bits by test_layout.cpp. Here: the
 // set-up the search makes for a triangle as it needs it is SetUpTriangle's, to the bit, for
 // triangles of every size the docs claim and for the ones the plain set-up treats apart
-// (degenerate, scaled, not finite).
+// (degenerate, scaled, not finite); and the rays the walk treats apart (kernel_wide.h) find what
+// the plain loop finds: from so far away that every box is entered, along an axis (1/d
+// infinite), and with a component too small for float (that axis not tested).
 #include "../fast/fast.h"
+#include "robust_scenes.h"
 #include "test.h"
 
 #include <cstring>
@@ -77,4 +80,58 @@ static void TestSetUpOnDemand() {
                            "SetUpTriangle's, every field to the bit");
 }
 
-void TestWide() { TestSetUpOnDemand(); }
+// The nearest hit and any hit of each ray, through the tree and by the plain loop, bit for bit.
+static int TreeDifferences(const Scene &scene, const std::vector<Ray> &rays) {
+    Scene plain = scene, tree = scene;
+    plain.accelerator = nullptr;
+    SceneLayout layout;
+    CommitScene(&tree, LAYOUT_BVH, 1, &layout);
+    int differ = 0;
+    for (const Ray &ray : rays) {
+        RayHit a, b;
+        bool foundA = FindNearestHit(&plain, kRobustMethods, &ray, 0, kInfinity, &a);
+        bool foundB = FindNearestHit(&tree, kRobustMethods, &ray, 0, kInfinity, &b);
+        differ += foundA != foundB || (foundA && !SameHit(a, b)) ||
+                  AnyHit(&plain, kRobustMethods, &ray, 0, kInfinity) !=
+                      AnyHit(&tree, kRobustMethods, &ray, 0, kInfinity);
+    }
+    return differ;
+}
+
+// A closed sphere mesh of radius 1 at the origin, and rays at each corner of some of its
+// triangles: from 1e13 of its size away (beyond the walk's 2^40: every box entered), along the
+// axes from inside and outside (1/d infinite on two axes), and with one component 1e-20 of the
+// others (below the walk's 2^-40: that axis not tested).
+static void TestRaysTheWalkTreatsApart() {
+    Scene ball = WallScene();
+    AddOctasphere(&ball, {0, 0, 0}, 1, 3); // 512 triangles
+    std::vector<Ray> far, axes, thin;
+    real away = real(kDouble ? 1e13 : 1e12); // (float: still beyond 2^40 of the sphere's size)
+    for (size_t i = 0; i < ball.triangles.size(); i += 7) {
+        vec3 c = ball.triangles[i].a, from = {away, real(0.5) * away, real(0.25) * away};
+        far.push_back({from, c - from});
+        from = real(1e-4) * from; // (and from within 2^40: boxes widened by the far origin's pad)
+        far.push_back({from, c - from});
+        thin.push_back({{c.x, real(-3), c.z}, {real(1e-20), 1, real(1e-20) * c.z}});
+    }
+    for (real s : {real(-1), real(1)})
+        for (vec3 d : {vec3{1, 0, 0}, vec3{0, 1, 0}, vec3{0, 0, 1}}) {
+            axes.push_back({{0, 0, 0}, s * d});
+            axes.push_back({real(-3) * s * d, s * d});
+            axes.push_back({real(-3) * s * d + vec3{real(0.1), real(0.2), real(0.05)}, s * d});
+        }
+    CHECK(TreeDifferences(ball, far) == 0,
+          "rays from 1e13 (float 1e12) of a sphere's size away, walked without boxes, and from "
+          "1e9 (1e8): the plain loop's hits, bit for bit");
+    CHECK(TreeDifferences(ball, axes) == 0,
+          "rays along the axes (1/d infinite on two axes), from inside and outside: the plain "
+          "loop's hits, bit for bit");
+    CHECK(TreeDifferences(ball, thin) == 0,
+          "rays with components 1e-20 of the largest (those axes not tested by the walk): the "
+          "plain loop's hits, bit for bit");
+}
+
+void TestWide() {
+    TestSetUpOnDemand();
+    TestRaysTheWalkTreatsApart();
+}
