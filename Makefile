@@ -38,7 +38,7 @@ PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 SCENES = $(basename $(wildcard scene_*.cpp))
 TOP = geometry camera blur shade path render smooth $(SCENES)
 ROBUST = robust/watertight robust/plane robust/rescale robust/leave
-FAST = fast/commit fast/build fast/kernel fast/commit_spheres
+FAST = fast/commit fast/commit_tree fast/build fast/kernel fast/commit_spheres
 APP = app/options app/modes app/image app/image_read app/text app/scene_file app/statements \
       app/mesh app/mesh_words app/mesh_normals app/probe app/views
 CORE = $(TOP) $(ROBUST) $(FAST) $(APP)
@@ -82,6 +82,9 @@ build/double/run_tests: $(call objs,build/double/tests,$(PER_BUILD_TESTS)) $(SHA
 build/float/run_tests: $(call objs,build/float/tests,$(PER_BUILD_TESTS)) $(SHARED_TEST_OBJS) $(FLOAT_CORE)
 	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
+# rt's images of every scene with the handouts' methods, the kit's references/ (make starter);
+# defined before the first rule that names them, as make reads a rule's prerequisites at once.
+REFERENCES = $(addprefix build/references/,$(addsuffix .png,$(notdir $(basename $(wildcard scenes/*.scene)))))
 test: all build/double/run_tests build/float/run_tests build/tiny build/grader build/grade-set $(REFERENCES)
 	@CXX="$(CXX)" RT_TESTS="$(RT_TESTS)" sh tests/run.sh build/double/run_tests build/float/run_tests tests/recipe.sh \
 	    tests/grade.sh tests/starter.sh tests/class.sh
@@ -149,19 +152,25 @@ build/student: bench/student.cpp
 	@mkdir -p $(@D)
 	$(CXX) -O2 -std=c++17 -o $@ $< $(PNG_CFLAGS) $(PNG_LIBS)
 
-# Embree 3 beside rt's triangle search (bench/peer_embree.cpp), built by bench.sh only where
-# Embree is installed (Debian's libembree-dev).
-build/peer_embree: build/double/bench/peer_embree.o $(DOUBLE_CORE)
-	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS) -lembree3
+# make bench's peer rows (bench/peers.sh): rt's side in double and float (bench/peer_rt.cpp), and
+# Embree 3 (bench/peer_embree.cpp), built only where Embree is installed (Debian's libembree-dev).
+# (tinybvh and bvh v2, when given, are built by bench/peers.sh itself, under build/peers/.)
+build/peer_rt: build/double/bench/peer_rt.o $(DOUBLE_CORE)
+	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
+
+build/peer_rt_float: build/float/bench/peer_rt.o $(FLOAT_CORE)
+	$(CXX) $(CXXFLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
+
+build/peer_embree: bench/peer_embree.cpp bench/peers.h build/config
+	$(CXX) $(CXXFLAGS) -std=c++17 -Wall -Wextra -o $@ bench/peer_embree.cpp -lembree3
 
 bench: ray ray_float build/double/rtbench build/float/rtbench build/student build/make_mesh \
-       build/weekend_scene
+       build/weekend_scene build/peer_rt build/peer_rt_float
 	@sh bench/bench.sh
 
 # The student kit: build/starter/rt-starter and build/starter/rt-starter.tar.gz, rt's teaching core
 # with the functions tools/starter/stubs.list names as stubs, and without robust/ and fast/
 # (tools/starter.sh).
-REFERENCES = $(addprefix build/references/,$(addsuffix .png,$(notdir $(basename $(wildcard scenes/*.scene)))))
 build/references/%.png: scenes/%.scene ray
 	@mkdir -p $(@D)
 	./ray $< --methods handout -o $@ >/dev/null

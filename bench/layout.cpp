@@ -89,13 +89,6 @@ struct Row {
     size_t layoutBytes;        // the BVH layout's arrays: blocks, nodes, set-ups, sphere blocks
 };
 
-// The bytes a committed layout's arrays hold (their capacity: what was allocated and written).
-static size_t LayoutBytes(const SceneLayout *l) {
-    return l->blocks.capacity() * sizeof(TriangleBlock) + l->nodes.capacity() * sizeof(BvhNode) +
-           l->setUps.capacity() * sizeof(TriangleSetUp) +
-           l->sphereBlocks.capacity() * sizeof(SphereBlock);
-}
-
 // What this machine takes to give a process a fresh 4 KB page, in microseconds: a 64 MB buffer,
 // new each pass, written a byte a page; the median of 5 passes. Measured before anything large
 // has been freed: glibc's malloc takes a buffer this size from the system (mmap) and gives it

@@ -1,90 +1,27 @@
-// bench/peer_embree.cpp -- rt's triangle search beside Embree's (`make bench`, where Embree 3 is
-// installed: Debian's libembree-dev; bench/bench.sh builds this as build/peer_embree).
-//
-//   peer_embree rt|embree MESH.obj ROUNDS
-//
-// reads the mesh (v and f lines, as tools/make_mesh writes them), builds the one program's
-// structure over it, and casts the same 512 x 512 rays from the eye ROUNDS times: rt's nearest
-// hit (FindNearestHit through the committed scene, double, watertight) or Embree's rtcIntersect1
-// (float, its default build quality). Prints the build's ms, then each round's ms, one a line,
-// then the hits of the last round (both programs must agree on how many rays hit). The peak
-// memory of the whole process is bench.sh's to read (rtbench timemem), so each program runs alone.
-#include "../fast/fast.h"
-#include "../render.h"
+// bench/peer_embree.cpp -- Embree 3 in make bench's peer rows (bench/peers.h says what each mode
+// prints), where it is installed (Debian's libembree-dev; bench/peers.sh builds this as
+// build/peer_embree). One thread, its default build quality and ISA, rtcIntersect1; its robust
+// mode (RTC_SCENE_FLAG_ROBUST) as a second column of the crack table (`cracks-robust`). Its
+// bytes are what it allocates, counted by its own memory monitor (rtcSetDeviceMemoryMonitorFunction):
+// the vertex and index buffers it was given, and the BVH.
+#include "peers.h"
 
 #include <embree3/rtcore.h>
 
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <vector>
+#include <atomic>
 
-static const int kSize = 512;
+static std::atomic<long long> gBytes(0); // what Embree holds now (its monitor's running sum)
 
-static double Ms(std::chrono::steady_clock::time_point since) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
-        .count();
+static bool Monitor(void *, ssize_t bytes, bool) {
+    gBytes += bytes;
+    return true;
 }
 
-// The mesh's vertices and faces (1-based indices in the file, 0-based here).
-static bool ReadObj(const char *path, std::vector<float> *v, std::vector<unsigned> *f) {
-    FILE *file = fopen(path, "r");
-    if (!file)
-        return false;
-    char line[256];
-    while (fgets(line, sizeof line, file)) {
-        float x, y, z;
-        unsigned a, b, c;
-        if (sscanf(line, "v %f %f %f", &x, &y, &z) == 3)
-            v->insert(v->end(), {x, y, z});
-        else if (sscanf(line, "f %u %u %u", &a, &b, &c) == 3)
-            f->insert(f->end(), {a - 1, b - 1, c - 1});
-    }
-    fclose(file);
-    return !f->empty();
-}
-
-// Ray (i, j) of the image: from (0, 0, 1.8) through a screen of width 1.2 at z = 0.8, toward the
-// unit sphere at the origin, which fills the picture but for its corners.
-static void EyeRay(int i, int j, float o[3], float d[3]) {
-    o[0] = 0, o[1] = 0, o[2] = 1.8f;
-    d[0] = 1.2f * (i + 0.5f) / kSize - 0.6f, d[1] = 0.6f - 1.2f * (j + 0.5f) / kSize, d[2] = -1;
-}
-
-static int RunRt(const std::vector<float> &v, const std::vector<unsigned> &f, int rounds) {
-    auto start = std::chrono::steady_clock::now();
-    Scene scene;
-    InitScene(&scene);
-    scene.materials = {{"white", {1, 1, 1}, {1, 1, 1}, 0, 1, 0, 0, {0, 0, 0}}};
-    auto corner = [&](unsigned k) { return vec3{v[3 * k], v[3 * k + 1], v[3 * k + 2]}; };
-    for (size_t t = 0; t < f.size(); t += 3)
-        scene.triangles.push_back({corner(f[t]), corner(f[t + 1]), corner(f[t + 2]), 0});
-    SceneLayout layout;
-    CommitScene(&scene, LAYOUT_AUTO, 1, &layout);
-    printf("%.3f\n", Ms(start));
-    long hits = 0;
-    for (int r = 0; r < rounds; r++) {
-        start = std::chrono::steady_clock::now();
-        hits = 0;
-        for (int j = 0; j < kSize; j++)
-            for (int i = 0; i < kSize; i++) {
-                float o[3], d[3];
-                EyeRay(i, j, o, d);
-                Ray ray = {{o[0], o[1], o[2]}, {d[0], d[1], d[2]}};
-                RayHit hit;
-                hits += FindNearestHit(&scene, kRobustMethods, &ray, 0, kInfinity, &hit);
-            }
-        printf("%.3f\n", Ms(start));
-    }
-    printf("hits %ld\n", hits);
-    return 0;
-}
-
-static int RunEmbree(const std::vector<float> &v, const std::vector<unsigned> &f, int rounds) {
-    auto start = std::chrono::steady_clock::now();
-    RTCDevice device = rtcNewDevice("threads=1");
+static RTCScene Build(RTCDevice device, const std::vector<float> &v,
+                      const std::vector<unsigned> &f, bool robust) {
     RTCScene scene = rtcNewScene(device);
+    if (robust)
+        rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
     RTCGeometry mesh = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     float *vertices = (float *)rtcSetNewGeometryBuffer(mesh, RTC_BUFFER_TYPE_VERTEX, 0,
                                                        RTC_FORMAT_FLOAT3, 3 * sizeof(float),
@@ -98,46 +35,77 @@ static int RunEmbree(const std::vector<float> &v, const std::vector<unsigned> &f
     rtcAttachGeometry(scene, mesh);
     rtcReleaseGeometry(mesh);
     rtcCommitScene(scene);
-    printf("%.3f\n", Ms(start));
+    return scene;
+}
+
+static bool Trace(RTCScene scene, const float o[3], const float d[3], double *t) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray.org_x = o[0], rh.ray.org_y = o[1], rh.ray.org_z = o[2];
+    rh.ray.dir_x = d[0], rh.ray.dir_y = d[1], rh.ray.dir_z = d[2];
+    rh.ray.tnear = 0, rh.ray.tfar = 1e30f, rh.ray.time = 0;
+    rh.ray.mask = ~0u, rh.ray.id = 0, rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &context, &rh);
+    *t = rh.ray.tfar;
+    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+}
+
+static void Time(RTCDevice device, const std::vector<float> &v, const std::vector<unsigned> &f,
+                 int rounds) {
+    auto start = std::chrono::steady_clock::now();
+    RTCScene scene = Build(device, v, f, false);
+    printf("%.3f\n", peers::Ms(start));
     long hits = 0;
     for (int r = 0; r < rounds; r++) {
         start = std::chrono::steady_clock::now();
         hits = 0;
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        for (int j = 0; j < kSize; j++)
-            for (int i = 0; i < kSize; i++) {
-                RTCRayHit rh;
+        for (int j = 0; j < peers::kSize; j++)
+            for (int i = 0; i < peers::kSize; i++) {
                 float o[3], d[3];
-                EyeRay(i, j, o, d);
-                rh.ray.org_x = o[0], rh.ray.org_y = o[1], rh.ray.org_z = o[2];
-                rh.ray.dir_x = d[0], rh.ray.dir_y = d[1], rh.ray.dir_z = d[2];
-                rh.ray.tnear = 0, rh.ray.tfar = 1e30f, rh.ray.time = 0;
-                rh.ray.mask = ~0u, rh.ray.id = 0, rh.ray.flags = 0;
-                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                rtcIntersect1(scene, &context, &rh);
-                hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+                double t;
+                peers::EyeRay(i, j, o, d);
+                hits += Trace(scene, o, d, &t);
             }
-        printf("%.3f\n", Ms(start));
+        printf("%.3f\n", peers::Ms(start));
     }
-    printf("hits %ld\n", hits);
+    printf("hits %ld\nbytes %lld\n", hits, (long long)gBytes);
     rtcReleaseScene(scene);
-    rtcReleaseDevice(device);
-    return 0;
+}
+
+static void Cracks(RTCDevice device, const std::vector<float> &v, const std::vector<unsigned> &f,
+                   bool robust) {
+    RTCScene scene = Build(device, v, f, robust);
+    for (const peers::CrackSet &set : peers::CrackSets(v, f)) {
+        long cracks = 0;
+        for (const peers::CrackRay &r : set.rays) {
+            double t;
+            bool hit = Trace(scene, r.o, r.d, &t);
+            cracks += peers::Crack(set, hit, t);
+        }
+        printf("%s\t%zu\t%ld\n", set.name, set.rays.size(), cracks);
+    }
+    rtcReleaseScene(scene);
 }
 
 int main(int argc, char **argv) {
+    bool robust = argc == 3 && !strcmp(argv[1], "cracks-robust");
+    char cracks[] = "cracks";
+    if (robust)
+        argv[1] = cracks;
+    int rounds;
+    int mode = peers::Mode(argc, argv, "peer_embree", &rounds);
     std::vector<float> v;
     std::vector<unsigned> f;
-    int rounds = argc == 4 ? atoi(argv[3]) : 0;
-    if (argc != 4 || rounds < 1 || !ReadObj(argv[2], &v, &f)) {
-        fprintf(stderr, "usage: peer_embree rt|embree MESH.obj ROUNDS\n");
+    if (mode < 0 || !peers::ReadObj(argv[2], &v, &f))
         return 2;
-    }
-    if (!strcmp(argv[1], "rt"))
-        return RunRt(v, f, rounds);
-    if (!strcmp(argv[1], "embree"))
-        return RunEmbree(v, f, rounds);
-    fprintf(stderr, "usage: peer_embree rt|embree MESH.obj ROUNDS\n");
-    return 2;
+    RTCDevice device = rtcNewDevice("threads=1");
+    rtcSetDeviceMemoryMonitorFunction(device, Monitor, nullptr);
+    if (mode == 0)
+        Time(device, v, f, rounds);
+    else
+        Cracks(device, v, f, robust);
+    rtcReleaseDevice(device);
+    return 0;
 }

@@ -4,8 +4,9 @@
 # skipped with a line that says how to get it:
 #   smallpt (Kevin Beason, MIT): SMALLPT=path/to/smallpt.cpp make bench
 #     (https://www.kevinbeason.com/smallpt/, one thread: its OpenMP line is ignored without -fopenmp)
-#   Embree 3: Debian's libembree-dev (apt-get install libembree-dev)
-# and two scaling rows that need no peer: spheres by the thousand, and copies of one triangle.
+# and rt's triangle search beside the fastest CPU kernels, Embree 3, tinybvh and bvh v2 (each
+# skipped where absent: bench/kernels.sh), and two scaling rows that need no peer: spheres by the
+# thousand, and copies of one triangle.
 set -eu
 out=$1 report=$2 runs=$3
 . bench/stats.sh
@@ -88,34 +89,8 @@ else
 fi
 echo "bench: smallpt done" >&2
 
-# ---- Embree 3: primary rays on icospheres ---------------------------------------------------
-if [ -f /usr/include/embree3/rtcore.h ] && make -s build/peer_embree 2>/dev/null; then
-    {
-    echo
-    echo "### Embree 3 (rtcIntersect1, one thread) against rt's nearest hit: 512 x 512 eye rays at an icosphere"
-    echo
-    echo "| triangles | rt build ms | Embree build ms | rt ms | Embree ms | rt's rays a second, of Embree's |"
-    echo "|---:|---:|---:|---:|---:|---:|"
-    } >>"$report"
-    for level in 3 4 5 6 7 8; do
-        build/make_mesh sphere "$level" >"$out/ico.obj"
-        : >"$out/eb" && : >"$out/er" && : >"$out/bb" && : >"$out/br"
-        for k in $(seq "$runs"); do
-            build/peer_embree rt "$out/ico.obj" 3 >"$out/one"
-            head -1 "$out/one" >>"$out/br" && sed -n '2,4p' "$out/one" >"$out/three" && median "$out/three" >>"$out/er"
-            build/peer_embree embree "$out/ico.obj" 3 >"$out/one"
-            head -1 "$out/one" >>"$out/bb" && sed -n '2,4p' "$out/one" >"$out/three" && median "$out/three" >>"$out/eb"
-        done
-        paste "$out/eb" "$out/er" | awk '{ print $1 / $2 }' >"$out/ratio"
-        echo "| $((20 * (1 << (2 * level)))) | $(spread "$out/br") | $(spread "$out/bb") | $(spread "$out/er") | $(spread "$out/eb") | $(median2 "$out/ratio") ($(quartiles "$out/ratio")) |" >>"$report"
-    done
-    rtmb=$(build/double/rtbench timemem build/peer_embree rt "$out/ico.obj" 1 | awk '{ print $2 }')
-    ebmb=$(build/double/rtbench timemem build/peer_embree embree "$out/ico.obj" 1 | awk '{ print $2 }')
-    echo "- peak memory of the whole process at 1,310,720 triangles: rt $rtmb MB, Embree $ebmb MB" >>"$report"
-else
-    echo "- Embree: skipped (apt-get install libembree-dev)" >>"$report"
-fi
-echo "bench: Embree done" >&2
+# ---- the triangle search beside Embree, tinybvh and bvh v2 (bench/kernels.sh) ---------------
+sh bench/kernels.sh "$out" "$report" "${KERNEL_RUNS:-9}"
 
 # ---- spheres by the thousand: one list against the spheres' BVH -----------------------------
 {

@@ -19,10 +19,6 @@
 // (Wald 2007) at a fraction of the cost of trying every triangle.
 const int kBins = 16;
 
-// A leaf holds at most this many blocks; one that the heuristic would keep whole but is larger
-// is split anyway.
-const int kMaxLeafBlocks = 4;
-
 // Four numbers at once: x, y, z and a fourth lane that is not used (Bounds, BuildItem). Vectors
 // are passed by pointer, as in kernel_blocks.h: a 32-byte vector is passed differently with AVX.
 RT_LANES(Quad4, real, 4);
@@ -196,7 +192,9 @@ struct Split {
 // tests: 1 for the node, plus for each side the chance that a ray meeting the node meets that
 // side times that side's blocks. Only boundaries right after a full bin are tried: one after an
 // empty bin splits the same way, and the first of those is the one a sweep over all finds.
-static RT_INLINE void BestSplit(const Bins *bins, int axis, real nodeArea, Split *best) {
+static RT_INLINE void BestSplit(const Bins *bins, int axis, real nodeArea, const LeafShape *leaves,
+                                Split *best) {
+    int shift = leaves->shift;
     const Bin *bin = bins->bin[axis];
     int full[kBins], m = 0;
     for (unsigned bits = bins->full[axis]; bits != 0; bits &= bits - 1)
@@ -206,21 +204,21 @@ static RT_INLINE void BestSplit(const Bins *bins, int axis, real nodeArea, Split
     real rightCost[kBins]; // area times blocks
     Bounds right = bin[full[m - 1]].box;
     int rightCount = bin[full[m - 1]].count;
-    rightCost[m - 1] = RawHalfArea(&right) * Blocks(rightCount);
+    rightCost[m - 1] = RawHalfArea(&right) * BlocksOf(rightCount, shift);
     for (int j = m - 2; j > 0; j--) { // everything in full bins j and above
         Grow(&right, &bin[full[j]].box);
         rightCount += bin[full[j]].count;
-        rightCost[j] = RawHalfArea(&right) * Blocks(rightCount);
+        rightCost[j] = RawHalfArea(&right) * BlocksOf(rightCount, shift);
     }
     Bounds left = bin[full[0]].box;
     int leftCount = bin[full[0]].count;
     for (int j = 1; j < m; j++) {
         if (j > 1)
             Grow(&left, &bin[full[j - 1]].box), leftCount += bin[full[j - 1]].count;
-        real sides = RawHalfArea(&left) * Blocks(leftCount) + rightCost[j];
+        real sides = RawHalfArea(&left) * BlocksOf(leftCount, shift) + rightCost[j];
         if (!(sides < best->sides)) // (rounding is monotonic: then the cost is no less either)
             continue;
-        real cost = 1 + sides / nodeArea; // (a division only where the cost may fall)
+        real cost = leaves->nodeCost + sides / nodeArea; // (a division only where it may fall)
         if (cost < best->cost)
             *best = {cost, sides, axis, full[j - 1] + 1};
     }
@@ -292,7 +290,7 @@ static RT_INLINE bool PlaceBins(const NodeBounds *node, Bins *bins) {
 
 // SplitNode (fast.h), compiled twice: with AVX2 a box is two vectors, not four halves.
 static RT_INLINE int SplitItems(BuildItem *items, int begin, int end, const NodeBounds *node,
-                                bool heuristic, NodeBounds side[2]) {
+                                bool heuristic, const LeafShape *leaves, NodeBounds side[2]) {
     int n = end - begin;
     Bins bins;
     Split best = {kInfinity, kInfinity, 0, 0};
@@ -307,10 +305,11 @@ static RT_INLINE int SplitItems(BuildItem *items, int begin, int end, const Node
         real area = HalfArea(&node->box);
         for (int k = 0; k < 3; k++)
             if (bins.scale[k] > 0)
-                BestSplit(&bins, k, area, &best);
+                BestSplit(&bins, k, area, leaves, &best);
     }
     if (best.cost < kInfinity) {
-        if (best.cost >= Blocks(n) && Blocks(n) <= kMaxLeafBlocks)
+        int blocks = BlocksOf(n, leaves->shift);
+        if (best.cost >= blocks && blocks <= leaves->maxBlocks)
             return -1;
         SideBoxes(&bins, &best, side);
         return PartitionItems(items, begin, end, &bins, &best, side);
@@ -328,17 +327,17 @@ static RT_INLINE int SplitItems(BuildItem *items, int begin, int end, const Node
     return begin + n / 2;
 }
 static int SplitPlain(BuildItem *items, int begin, int end, const NodeBounds *node, bool heuristic,
-                      NodeBounds side[2]) {
-    return SplitItems(items, begin, end, node, heuristic, side);
+                      const LeafShape *leaves, NodeBounds side[2]) {
+    return SplitItems(items, begin, end, node, heuristic, leaves, side);
 }
 RT_AVX2 static int SplitVectors(BuildItem *items, int begin, int end, const NodeBounds *node,
-                                bool heuristic, NodeBounds side[2]) {
-    return SplitItems(items, begin, end, node, heuristic, side);
+                                bool heuristic, const LeafShape *leaves, NodeBounds side[2]) {
+    return SplitItems(items, begin, end, node, heuristic, leaves, side);
 }
 
 int SplitNode(BuildItem *items, int begin, int end, const NodeBounds *node, bool heuristic,
-              bool vectors, NodeBounds side[2]) {
-    return (vectors ? SplitVectors : SplitPlain)(items, begin, end, node, heuristic, side);
+              const LeafShape *leaves, bool vectors, NodeBounds side[2]) {
+    return (vectors ? SplitVectors : SplitPlain)(items, begin, end, node, heuristic, leaves, side);
 }
 
 // MakeBuildItems (fast.h), compiled twice. The box is TriangleBox's, lane by lane: its least and

@@ -23,6 +23,9 @@ const int kMaxSahDepth = 48;
 // few blocks (`make bench`'s sphere table, docs/speed.md).
 const size_t kBvhMinSpheres = 64;
 
+// The leaves: blocks of kLanes, at most four a leaf.
+const LeafShape kSphereLeaves = {kLanes == 8 ? 3 : 2, 4, 1};
+
 // A range of the items that will be one child of a node: a leaf, or a node of its own.
 struct SphereRange {
     int begin, end;
@@ -118,8 +121,8 @@ static int SplitFour(BuildItem *items, const SphereRange *whole, int depth, bool
             break;
         SphereRange r = kids[open];
         NodeBounds side[2];
-        int middle =
-            SplitNode(items, r.begin, r.end, &r.bounds, depth < kMaxSahDepth, vectors, side);
+        int middle = SplitNode(items, r.begin, r.end, &r.bounds, depth < kMaxSahDepth,
+                               &kSphereLeaves, vectors, side);
         if (middle < 0) {
             kids[open].leaf = true;
             continue;

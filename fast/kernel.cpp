@@ -1,5 +1,5 @@
 // fast/kernel.cpp -- the accelerator that main installs: the two functions the core's seam calls
-// (Accelerator, ray.h), and the kernel behind them: blocks of kLanes triangles, the BVH walk,
+// (Accelerator, ray.h), and the kernel behind them: blocks of kLanes triangles, the BVH walks,
 // blocks of spheres, packets of eye rays.
 //
 // A search answers as the plain loop of geometry.cpp does, bit for bit: the spheres in scene
@@ -14,100 +14,107 @@
 //      certain sign (none 0 or NaN), what IntersectSheared (watertight.cpp) does next is to call
 //      RobustPlaneHit, so the kernel calls it with the same arguments; the others get the whole
 //      reference function (IntersectWatertight), which decides their signs exactly.
-//   2. With a BVH (commit.cpp), a ray visits only the nodes whose boxes its line passes
-//      (SlabInterval, nearer child first) and skips those wholly beyond its nearest hit so far.
-//      Every hit lies inside its triangle's window (plane.cpp), and a node's window holds those
-//      of the triangles below it, so no box is skipped that holds a hit. Hits at equal t go to
-//      the lower place in the scene, as in the list.
+//   2. With a BVH (commit_tree.cpp), a ray visits only the nodes whose boxes its line passes
+//      (SlabInterval's steps, nearer child first) and skips those wholly beyond its nearest hit
+//      so far. Every hit lies inside its triangle's window (plane.cpp), and a node's window holds
+//      those of the triangles below it, so no box is skipped that holds a hit. Hits at equal t go
+//      to the lower place in the scene, as in the list. The tree is eight wide with float boxes,
+//      and its leaves' blocks are float copies filtered with a bound on float's rounding
+//      (kernel_wide.h, kernel_filter.h say why neither refuses what the exact test would keep).
 // One binary serves every x86-64 machine: the loop is compiled twice, for AVX2 and for the
 // baseline (SSE2), and each call takes the one this processor can run (what target_clones does;
 // written out, because clang 14's target_clones cannot be called from another file).
-// The block test is in kernel_blocks.h, the walk in kernel_walk.h; this file puts them together
-// for one ray and dispatches. The spheres' blocks (kernel_spheres.h) get the same treatment: the
-// first step of the stable sphere test on kLanes spheres at once, the reference test for the rest.
+// The list's block test is in kernel_blocks.h, the tree's walk in kernel_wide.h; this file puts
+// them together for one ray and dispatches. The spheres' blocks (kernel_spheres.h) get the same
+// treatment: the first step of the stable sphere test on kLanes spheres at once, the reference
+// test for the rest, and from 64 spheres a BVH of their own (kernel_walk.h).
 #include "kernel_packet.h"
 #include "kernel_walk.h"
+#include "kernel_wide.h"
 
 #include <cstdio>
 
-// 1 / d on each axis, as MakeSlabRay divides (each lane rounds as the scalar division does),
-// for OutOfReach: one vector division, made every search, and built in registers (three numbers
-// stored one by one and read back as one vector would wait for the stores).
-static RT_INLINE void Inverses(vec3 d, real inverse[3]) {
-    Lanes one, lanes;
-    Fill(&one, 1);
-    lanes = one;
-    lanes[0] = d.x, lanes[1] = d.y, lanes[2] = d.z;
-    Lanes quotient = one / lanes;
-    inverse[0] = quotient[0], inverse[1] = quotient[1], inverse[2] = quotient[2];
-}
-
-template <int kz, bool kVectors>
-static RT_INLINE bool HitLayout(const SceneLayout *layout, Search *s, RayHit *hit) {
-    if (layout->nodes.empty())
-        return TestBlocks<kz, kVectors>(layout->blocks.data(), 0, (int)layout->blocks.size(), s,
-                                        hit);
-    return WalkTree<kz, kVectors>(layout, s, hit);
+// The wide tree's search (kernel_wide.h) for a ray whose exact search is w->exact.
+template <int kz>
+static RT_INLINE bool HitWide(const SceneLayout *layout, WideSearch *w, RayHit *hit) {
+    const Search *s = &w->exact;
+    PowerPair scale = PowerOfTwoPair(layout->wideExponent);
+    Double4 o;
+    double omax = ScaledOrigin(s->ray, scale, &o);
+    MakeWideRay(s->ray, &o, omax, scale, s->tMin, s->tMax, &w->nodes);
+    MakeFilterRay<kz>(s->shear, &o, omax, w->nodes.culls, &w->filter);
+    MakePlaneRay(s->ray, &w->plane);
+    w->reach = false;
+    return WalkWide<kz>(layout, w, hit);
 }
 
 // The search for one ray whose main axis is kz: the ray sheared here, so that its numbers are
 // spread over the lanes from registers (sheared by the caller, out of line, they would be read
-// back as one vector load of numbers just stored, which waits for the stores).
-template <int kz, bool kVectors>
+// back as one vector load of numbers just stored, which waits for the stores). kWideTree: the
+// layout has the wide tree (else its blocks are one list).
+template <int kz, bool kVectors, bool kWideTree>
 static RT_INLINE bool HitSheared(const Scene *scene, const SceneLayout *layout, int skip,
                                  const Ray *ray, real tMin, real tMax, bool anyHit, RayHit *hit) {
     RayShear shear;
     ShearRayAxes<kz>(ray, &shear);
-    Search s = {scene->triangles.data(),
-                layout->setUps.data(),
-                ray,
-                &shear,
-                {},
-                skip,
-                tMin,
-                tMax,
-                -1,
-                anyHit,
-                {},
-                OriginPad(ray)};
+    WideSearch w; // (its exact part is all a list needs)
+    Search &s = w.exact;
+    s.triangles = scene->triangles.data(), s.setUps = layout->setUps.data();
+    s.ray = ray, s.shear = &shear, s.skip = skip, s.tMin = tMin, s.tMax = tMax, s.best = -1;
+    s.anyHit = anyHit, s.originPad = OriginPad(ray);
+    if (kWideTree)
+        return HitWide<kz>(layout, &w, hit);
     Inverses(ray->dir, s.inverse);
     Splat(&s.lanes.ox, shear.origin.x), Splat(&s.lanes.oy, shear.origin.y);
     Splat(&s.lanes.oz, shear.origin.z), Splat(&s.lanes.sx, shear.sx);
     Splat(&s.lanes.sy, shear.sy);
-    return HitLayout<kz, kVectors>(layout, &s, hit);
+    return TestBlocks<kz, kVectors>(layout->blocks.data(), 0, (int)layout->blocks.size(), &s, hit);
 }
 
-// The whole search for one ray, compiled into each of the two copies below.
-template <bool kVectors>
+// The whole search for one ray, compiled into each of the copies below.
+template <bool kVectors, bool kWideTree>
 static RT_INLINE bool HitAll(const Scene *scene, const SceneLayout *layout, int skip,
                              const Ray *ray, real tMin, real tMax, bool anyHit, RayHit *hit) {
     int kz = DominantAxis(ray->dir);
     if (kz == 0)
-        return HitSheared<0, kVectors>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+        return HitSheared<0, kVectors, kWideTree>(scene, layout, skip, ray, tMin, tMax, anyHit,
+                                                  hit);
     if (kz == 1)
-        return HitSheared<1, kVectors>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
-    return HitSheared<2, kVectors>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+        return HitSheared<1, kVectors, kWideTree>(scene, layout, skip, ray, tMin, tMax, anyHit,
+                                                  hit);
+    return HitSheared<2, kVectors, kWideTree>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
 }
 
-static bool HitBaseline(const Scene *scene, const SceneLayout *layout, int skip, const Ray *ray,
-                        real tMin, real tMax, bool anyHit, RayHit *hit) {
-    return HitAll<false>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+// The list's search and the wide tree's, each a function of its own (so that neither carries the
+// other's stack and registers), in both copies.
+static bool ListBaseline(const Scene *scene, const SceneLayout *layout, int skip, const Ray *ray,
+                         real tMin, real tMax, bool anyHit, RayHit *hit) {
+    return HitAll<false, false>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+}
+static bool WideBaseline(const Scene *scene, const SceneLayout *layout, int skip, const Ray *ray,
+                         real tMin, real tMax, bool anyHit, RayHit *hit) {
+    return HitAll<false, true>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
 }
 
 #if RT_DISPATCH
-RT_AVX2 static bool HitAvx2(const Scene *scene, const SceneLayout *layout, int skip, const Ray *ray,
-                            real tMin, real tMax, bool anyHit, RayHit *hit) {
-    return HitAll<true>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+RT_AVX2 static bool ListAvx2(const Scene *scene, const SceneLayout *layout, int skip,
+                             const Ray *ray, real tMin, real tMax, bool anyHit, RayHit *hit) {
+    return HitAll<true, false>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+}
+RT_AVX2 static bool WideAvx2(const Scene *scene, const SceneLayout *layout, int skip,
+                             const Ray *ray, real tMin, real tMax, bool anyHit, RayHit *hit) {
+    return HitAll<true, true>(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
 }
 #endif
 
 bool HitCommittedTriangles(const Scene *scene, const SceneLayout *layout, int skip, const Ray *ray,
                            real tMin, real tMax, bool anyHit, RayHit *hit) {
+    bool wide = !layout->wideNodes.empty();
 #if RT_DISPATCH
     if (layout->vectors)
-        return HitAvx2(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+        return (wide ? WideAvx2 : ListAvx2)(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
 #endif
-    return HitBaseline(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
+    return (wide ? WideBaseline : ListBaseline)(scene, layout, skip, ray, tMin, tMax, anyHit, hit);
 }
 
 // The sphere blocks (kernel_spheres.h), one chunk or many, each in both copies. Out of line, so
@@ -192,7 +199,7 @@ bool HitCommittedPacket(const Scene *scene, const SceneLayout *layout, const Ray
                         RayHit *hits, bool *found) {
 #if RT_DISPATCH
     int count = packet->count;
-    if (!layout->vectors || !layout->nodes.empty() || !layout->sphereNodes.empty() || count < 1 ||
+    if (!layout->vectors || !layout->wideNodes.empty() || !layout->sphereNodes.empty() || count < 1 ||
         count > kLanes || packet->kz < 0 || packet->kz > 2)
         return false;
     PacketSearch p;
@@ -205,6 +212,19 @@ bool HitCommittedPacket(const Scene *scene, const SceneLayout *layout, const Ray
     (void)scene, (void)layout, (void)packet, (void)hits, (void)found;
     return false;
 #endif
+}
+
+#if RT_DISPATCH
+RT_AVX2 static void SetUpAvx2(const Triangle *tri, TriangleSetUp *setUp) { MakeSetUp(tri, setUp); }
+#endif
+
+void KernelSetUp(const Triangle *tri, bool vectors, TriangleSetUp *setUp) {
+#if RT_DISPATCH
+    if (vectors)
+        return SetUpAvx2(tri, setUp);
+#endif
+    (void)vectors;
+    MakeSetUp(tri, setUp);
 }
 
 bool KernelHasVectors() {
@@ -269,7 +289,7 @@ bool SearchLayout(const Accelerator *self, const Scene *scene, Methods methods, 
 // one ray's search with more bookkeeping.
 const size_t kPacketShapes = 64;
 static bool PacketPays(const SceneLayout *layout, int count) {
-    return count >= 2 && layout->vectors && layout->nodes.empty() && layout->sphereNodes.empty() &&
+    return count >= 2 && layout->vectors && layout->wideNodes.empty() && layout->sphereNodes.empty() &&
            layout->triangleCount + layout->sphereCount <= kPacketShapes;
 }
 
@@ -311,10 +331,12 @@ static std::string DescribeTriangles(const Scene *scene, const SceneLayout *layo
         return text;
     }
     char tree[64] = "one list";
-    if (!layout->nodes.empty())
-        snprintf(tree, sizeof tree, "a BVH of %zu nodes of %d", layout->nodes.size(), kChildren);
+    bool wide = !layout->wideNodes.empty();
+    if (wide)
+        snprintf(tree, sizeof tree, "a BVH of %zu nodes of %d", layout->wideNodes.size(), kWide);
     snprintf(text, sizeof text, "triangles: %zu in %zu blocks of %d, %s (built in %.3g ms), %s",
-             scene->triangles.size(), layout->blocks.size(), kLanes, tree, buildSeconds * 1e3,
+             scene->triangles.size(), wide ? layout->wideBlocks.size() : layout->blocks.size(),
+             wide ? kWide : kLanes, tree, buildSeconds * 1e3,
              layout->vectors ? "blocks tested in AVX2 vectors" : "blocks tested lane by lane");
     return text;
 }

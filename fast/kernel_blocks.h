@@ -156,6 +156,18 @@ struct Search {
     real inverse[3], originPad; // 1 / d by axis and OriginPad, for OutOfReach
 };
 
+// 1 / d on each axis, as MakeSlabRay divides (each lane rounds as the scalar division does),
+// for OutOfReach: one vector division, made every search, and built in registers (three numbers
+// stored one by one and read back as one vector would wait for the stores).
+static RT_INLINE void Inverses(vec3 d, real inverse[3]) {
+    Lanes one, lanes;
+    Splat(&one, 1);
+    lanes = one;
+    lanes[0] = d.x, lanes[1] = d.y, lanes[2] = d.z;
+    Lanes quotient = one / lanes;
+    inverse[0] = quotient[0], inverse[1] = quotient[1], inverse[2] = quotient[2];
+}
+
 // A triangle whose window (plane.cpp) lies wholly at or beyond `limit`, or at or before tMin:
 // it cannot be hit, since every hit lies in its triangle's window, and the window lies inside
 // the box's slab on any one axis (SlabInterval, whose steps on each axis are these, with the
@@ -177,9 +189,27 @@ static RT_INLINE bool OutOfReach(const Box *box, int axis, const Search *s, real
     return first >= limit || last <= s->tMin;
 }
 
-// The full test for the survivors of blocks [first, first + count). A triangle at the same t
-// as the nearest so far counts only if it comes earlier in the scene (so the tMax it is tested
-// against is one step above). True if anything was hit.
+// The full test of one triangle that passed the first step, at place `index` (not to be
+// skipped), with its set-up: the reach test, then the rest of the reference test. A triangle at
+// the same t as the nearest so far counts only if it comes earlier in the scene (so the tMax it
+// is tested against is one step above). `sure`: its three edge functions are known to be of one
+// sign and none 0, so what IntersectSheared does next is RobustPlaneHit, called here with the
+// same arguments. True if hit (the search's nearest then).
+static RT_INLINE bool TestSurvivor(Search *s, int index, const TriangleSetUp *setUp, bool sure,
+                                   RayHit *hit) {
+    real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;
+    const Triangle *tri = &s->triangles[index];
+    if (OutOfReach(&setUp->box, setUp->flat, s, limit))
+        return false;
+    if (!(sure ? RobustPlaneHit(tri, setUp, s->ray, s->tMin, limit, hit)
+               : IntersectWatertight(tri, setUp, s->ray, s->shear, s->tMin, limit, hit)))
+        return false;
+    hit->index = s->best = index;
+    s->tMax = hit->t;
+    return true;
+}
+
+// The full test for the survivors of blocks [first, first + count). True if anything was hit.
 template <int kz, bool kVectors>
 static RT_INLINE bool TestBlocks(const TriangleBlock *blocks, int first, int count, Search *s,
                                  RayHit *hit) {
@@ -190,19 +220,9 @@ static RT_INLINE bool TestBlocks(const TriangleBlock *blocks, int first, int cou
                                  : SurvivorsOneByOne<kz>(b, s->shear, &sure);
         for (; live != 0; live &= live - 1) {
             int lane = LowestBit(live), index = b->index[lane];
-            if (index < 0 || index == s->skip)
+            if (index < 0 || index == s->skip ||
+                !TestSurvivor(s, index, &s->setUps[index], sure >> lane & 1u, hit))
                 continue;
-            real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;
-            const Triangle *tri = &s->triangles[index];
-            const TriangleSetUp *setUp = &s->setUps[index];
-            if (OutOfReach(&setUp->box, setUp->flat, s, limit))
-                continue;
-            if (!(sure >> lane & 1u
-                      ? RobustPlaneHit(tri, setUp, s->ray, s->tMin, limit, hit)
-                      : IntersectWatertight(tri, setUp, s->ray, s->shear, s->tMin, limit, hit)))
-                continue;
-            hit->index = s->best = index;
-            s->tMax = hit->t;
             found = true;
             if (s->anyHit)
                 return true;

@@ -213,15 +213,6 @@ static RT_INLINE bool WalkNodes(const BvhNode *nodes, const Ray *ray, real tMin,
     }
 }
 
-template <int kz, bool kVectors>
-static RT_INLINE bool WalkTree(const SceneLayout *layout, Search *s, RayHit *hit) {
-    const TriangleBlock *blocks = layout->blocks.data();
-    return WalkNodes<kVectors>(layout->nodes.data(), s->ray, s->tMin, &s->tMax, s->anyHit,
-                               [blocks, s, hit](int first, int count) {
-                                   return TestBlocks<kz, kVectors>(blocks, first, count, s, hit);
-                               });
-}
-
 // ---- the spheres' tree -------------------------------------------------------------------
 
 // A leaf's spheres: the first step on a block at a time (MayMeet), the reference test for the

@@ -329,7 +329,7 @@ static inline QuickAnswer QuickPlaneT(const PlaneProblem *p, const Ray *ray, rea
 
 // Everything QuickPlaneT leaves open: FindPlaneT, from the start. (It makes its own
 // PlaneProblem: taking the caller's by address would keep that one in memory on the common path.)
-static bool SlowPlaneT(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray, real tMin,
+bool SlowPlaneT(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray, real tMin,
                        real tMax, PlaneT *plane) {
     PlaneProblem p = {tri, setUp, Widen(tri->a), Widen(ray->origin), Widen(ray->dir)};
     Window window = {&setUp->box, ray, false, 0, 0};

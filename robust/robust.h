@@ -175,6 +175,12 @@ struct PlaneT {
 // RobustPlaneHit to decide from the start.
 enum QuickAnswer { PLANE_MISS, PLANE_HIT, PLANE_UNSURE };
 
+// What RobustPlaneHit does where tier 1 alone cannot decide (QuickPlaneT: PLANE_UNSURE): both
+// tiers from the start, t in (tMin, tMax) and its bound into *plane; false if there is none. For
+// fast/, which runs tier 1 itself (and the triangle has area).
+bool SlowPlaneT(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray, real tMin,
+                real tMax, PlaneT *plane);
+
 // RobustPlaneHit's record for the t it settled on: the point o + t d, which lies on the plane to
 // within its bound (the rounding of o + t d itself, and t's error times |d|), the normal turned
 // toward the ray. False, and *hit untouched, where the point leaves the range of numbers.

@@ -100,6 +100,7 @@ void TestRanges();
 void TestFiles();
 void TestMethods();
 void TestLayout();
+void TestWide();
 void TestSmooth();
 void TestSmoothWalls();
 void TestSpheres();

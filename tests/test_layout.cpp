@@ -437,14 +437,13 @@ static void TestTinyMeshBuild() {
 // sphere of 8,192 triangles twice over (each centre twice: ties in every bin), shuffled, well
 // above the size from which the build takes a second thread (kThreadMin, 4,096).
 static bool SameTree(const SceneLayout &a, const SceneLayout &b) {
-    if (a.nodes.size() != b.nodes.size() || a.blocks.size() != b.blocks.size())
+    if (a.wideNodes.size() != b.wideNodes.size() || a.wideBlocks.size() != b.wideBlocks.size() ||
+        a.wideExponent != b.wideExponent)
         return false;
-    bool same = memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)) == 0;
-    for (size_t i = 0; i < a.blocks.size(); i++) // (field by field: a block has padding)
-        same = same &&
-               memcmp(a.blocks[i].corner, b.blocks[i].corner, sizeof a.blocks[i].corner) == 0 &&
-               memcmp(a.blocks[i].index, b.blocks[i].index, sizeof a.blocks[i].index) == 0;
-    return same;
+    return memcmp(a.wideNodes.data(), b.wideNodes.data(), a.wideNodes.size() * sizeof(WideNode)) ==
+               0 &&
+           memcmp(a.wideBlocks.data(), b.wideBlocks.data(),
+                  a.wideBlocks.size() * sizeof(WideBlock)) == 0;
 }
 static void TestSameTreeAnyThreads() {
     Scene one = WallScene();
@@ -459,7 +458,7 @@ static void TestSameTreeAnyThreads() {
     SceneLayout oneLayout, twoLayout;
     CommitScene(&one, LAYOUT_BVH, 1, &oneLayout);
     CommitScene(&two, LAYOUT_BVH, 2, &twoLayout);
-    CHECK(!oneLayout.nodes.empty() && SameTree(oneLayout, twoLayout),
+    CHECK(!oneLayout.wideNodes.empty() && SameTree(oneLayout, twoLayout),
           "16,384 shuffled triangles: the same nodes and blocks built by one thread and by two");
 }
 

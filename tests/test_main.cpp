@@ -112,6 +112,7 @@ static const struct {
     {"files", TestFiles},
     {"methods", TestMethods},
     {"layout", TestLayout},
+    {"wide", TestWide},
     {"spheres", TestSpheres},
     {"packet", TestPacket},
     {"path", TestPath},
