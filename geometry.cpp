@@ -387,15 +387,13 @@ bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const SelfH
 
 void FindEyeRayHits(const Scene *scene, Methods methods, const Ray *rays, int count, RayHit *hits,
                     bool *found) {
-    bool answered[kEyeRaysTogether] = {};
     // starter: begin kit-eye-rays
     const Accelerator *fast = scene->accelerator;
-    if (fast) // fast: rays that go nearly the same way, searched together (a packet)
-        fast->eyeRays(fast, scene, methods, rays, count, hits, found, answered);
+    if (fast) // fast: rays that go nearly the same way searched together (a packet), the rest alone
+        return fast->eyeRays(fast, scene, methods, rays, count, hits, found);
     // starter: end
     for (int k = 0; k < count; k++)
-        if (!answered[k])
-            found[k] = FindNearestHit(scene, methods, &rays[k], 0, kInfinity, &hits[k]);
+        found[k] = SearchList(scene, methods, &rays[k], &kNoSelfHit, kInfinity, false, &hits[k]);
 }
 
 // ---- leaving a surface ---------------------------------------------------------------------

@@ -423,14 +423,6 @@ static void FinishTree(const Path *path, const std::vector<PathNode> &nodes) {
     }
 }
 
-color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, int i,
-                int j, int s, TraceLog *log) {
-    RayHit hit;
-    bool found =
-        FindNearestHitFrom(scene, settings->methods, primary, &kNoSelfHit, kInfinity, &hit);
-    return TraceFoundPath(scene, settings, primary, found, &hit, i, j, s, log);
-}
-
 // rt's estimator, one vertex a turn: the emitted light of what the ray hit (weighted by MIS),
 // then the bounce, until a miss, the depth cap, or roulette.
 static color FullPath(Path *path, bool foundFirst, const RayHit *firstHit) {
@@ -470,8 +462,8 @@ static color FullPath(Path *path, bool foundFirst, const RayHit *firstHit) {
     return path->light;
 }
 
-color TraceFoundPath(const Scene *scene, const RenderSettings *settings, const Ray *primary,
-                     bool found, const RayHit *hit, int i, int j, int s, TraceLog *log) {
+color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, bool found,
+                const RayHit *hit, int i, int j, int s, TraceLog *log) {
     log->stats.primaryHits += found;
     Path path = {scene,
                  settings,

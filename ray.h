@@ -436,14 +436,13 @@ bool SearchList(const Scene *scene, Methods methods, const Ray *ray, const SelfH
 // pixel's eye rays tested together (fast/fast.h). main installs one in scene->accelerator; the
 // core calls it at one marked line and never looks inside. `search` answers every search it is
 // given, as SearchList does (and runs SearchList itself where it cannot, as for the handouts'
-// methods); `eyeRays` gets what FindEyeRayHits gets, and sets answered[k] for each ray whose
-// found[k] and hits[k] it wrote, leaving the others to FindNearestHit.
+// methods); `eyeRays` answers every ray FindEyeRayHits is given, as its plain loop would.
 struct Accelerator {
     const void *layout; // what it searches (fast/: the committed scene)
     bool (*search)(const Accelerator *self, const Scene *scene, Methods methods, const Ray *ray,
                    const SelfHit *from, real tMax, bool anyHit, RayHit *hit);
     void (*eyeRays)(const Accelerator *self, const Scene *scene, Methods methods, const Ray *rays,
-                    int count, RayHit *hits, bool *found, bool *answered);
+                    int count, RayHit *hits, bool *found);
 };
 
 // ---- scene_default.cpp, scene_test.cpp: the built-in scenes ----------------------------------

@@ -116,34 +116,39 @@ static vec2 JitterPosition(int i, int j, const GridCell *cell, int s, int stream
     return {i + p.x, j + p.y};
 }
 
-// One sample of pixel (i, j): the camera ray through `position`, traced as the scene's shading
-// says. `s` numbers the samples of the pixel (a path's random numbers depend on it).
-static color TraceSample(const Scene *scene, const RenderSettings *settings, vec2 position, int i,
+void TraceEyeRays(const Scene *scene, const RenderSettings *settings, const Ray *rays, int count,
+                  int i, int j, int s, TraceLog *log, color *colours) {
+    RayHit hits[kEyeRaysTogether];
+    bool found[kEyeRaysTogether];
+    FindEyeRayHits(scene, settings->methods, rays, count, hits, found);
+    for (int k = 0; k < count; k++)
+        colours[k] = scene->shading == SHADING_PATH
+                         ? TracePath(scene, settings, &rays[k], found[k], &hits[k], i, j, s + k, log)
+                         : ShadeFound(scene, settings, RAY_PRIMARY, &rays[k], RayChain{1, 1},
+                                      found[k], &hits[k], log);
+}
+
+// Sample s of pixel (i, j), alone: the camera ray through `position`, and its colour.
+static color SampleColor(const Scene *scene, const RenderSettings *settings, vec2 position, int i,
                          int j, int s, TraceLog *log) {
     Ray ray;
+    color c;
     GetCameraRay(&settings->camera, settings->width, settings->height, position, &ray);
-    if (scene->shading == SHADING_PATH)
-        return TracePath(scene, settings, &ray, i, j, s, log);
-    return TraceRay(scene, settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, log);
+    TraceEyeRays(scene, settings, &ray, 1, i, j, s, log, &c);
+    return c;
 }
 
 // Samples first .. first + count - 1 of pixel (i, j) (count at most kEyeRaysTogether) at
-// `positions`, added to *sum in turn, with the colours TraceSample gives them, in the same order:
-// their eye rays' nearest hits found together (FindEyeRayHits, where an accelerator may take them
-// as a packet), then each traced on as the scene says.
+// `positions`, added to *sum in turn: their camera rays traced together (TraceEyeRays).
 static void AddSamples(const Scene *scene, const RenderSettings *settings, const vec2 *positions,
                        int i, int j, int first, int count, TraceLog *log, color *sum) {
     Ray rays[kEyeRaysTogether];
-    RayHit hits[kEyeRaysTogether];
-    bool found[kEyeRaysTogether];
+    color colours[kEyeRaysTogether];
     for (int k = 0; k < count; k++)
         GetCameraRay(&settings->camera, settings->width, settings->height, positions[k], &rays[k]);
-    FindEyeRayHits(scene, settings->methods, rays, count, hits, found);
+    TraceEyeRays(scene, settings, rays, count, i, j, first, log, colours);
     for (int k = 0; k < count; k++)
-        *sum = *sum + (scene->shading == SHADING_PATH
-                           ? TraceFoundPath(scene, settings, &rays[k], found[k], &hits[k], i, j,
-                                            first + k, log)
-                           : TraceFoundEyeRay(scene, settings, &rays[k], found[k], &hits[k], log));
+        *sum = *sum + colours[k];
 }
 
 // Whether samples differ, in any channel clamped to [0, 1], by more than kAdaptiveContrast.
@@ -179,7 +184,7 @@ static color AdaptivePixel(const Scene *scene, const RenderSettings *settings, i
     for (int s = 0; s < 5; s++) {
         vec2 p = firstPositions[s];
         log->surfaces = 0;
-        first[s] = TraceSample(scene, settings, {i + p.x, j + p.y}, i, j, s, log);
+        first[s] = SampleColor(scene, settings, {i + p.x, j + p.y}, i, j, s, log);
         centre = s == 0 ? log->surfaces : centre;
         sameSurfaces = sameSurfaces && log->surfaces == centre;
         if (s > 0)
@@ -192,7 +197,7 @@ static color AdaptivePixel(const Scene *scene, const RenderSettings *settings, i
     for (int s = 0; s < n - 1; s++) {
         cell = NextCell(&cell, s, n - 1);
         vec2 p = JitterPosition(i, j, &cell, s, 1);
-        sum = sum + TraceSample(scene, settings, p, i, j, 5 + s, log);
+        sum = sum + SampleColor(scene, settings, p, i, j, 5 + s, log);
     }
     return (real(1) / n) * sum;
 }
@@ -226,7 +231,7 @@ static color AdaptivePathPixel(const Scene *scene, const RenderSettings *setting
     double brightness = 0, squares = 0;
     for (int s = 0; s < kPathFirst; s++) { // the pilots: sample numbers past the pixel's own
         vec2 u = HashPoint(i, j, most + s, 2);
-        color c = TraceSample(scene, settings, {i + u.x, j + u.y}, i, j, most + s, log);
+        color c = SampleColor(scene, settings, {i + u.x, j + u.y}, i, j, most + s, log);
         double y = ((double)c.x + c.y + c.z) / 3;
         brightness += y, squares += y * y;
     }
@@ -239,15 +244,13 @@ static color AdaptivePathPixel(const Scene *scene, const RenderSettings *setting
     color sum = {0, 0, 0};
     for (int s = 0; s < n; s++) {
         vec2 u = HashPoint(i, j, s, 2);
-        sum = sum + TraceSample(scene, settings, {i + u.x, j + u.y}, i, j, s, log);
+        sum = sum + SampleColor(scene, settings, {i + u.x, j + u.y}, i, j, s, log);
     }
     return (real(1) / n) * sum;
 }
 
-// RenderPixel, given the cell of sample 0 (FindCell(0, samplesPerPixel)), which a row of pixels
-// finds once.
-static color PixelColor(const Scene *scene, const RenderSettings *settings, int i, int j,
-                        const GridCell *firstCell, RayStats *stats) {
+color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
+                  RayStats *stats) {
     TraceLog log = {RayStats{}, nullptr, -1, 0};
     int n = settings->samplesPerPixel;
     color result = {0, 0, 0};
@@ -255,12 +258,10 @@ static color PixelColor(const Scene *scene, const RenderSettings *settings, int 
         result = AdaptivePathPixel(scene, settings, i, j, &log);
     } else if (settings->sampling == SAMPLES_ADAPTIVE && n > 5) {
         result = AdaptivePixel(scene, settings, i, j, &log);
-    } else if (n == 1) { // the pixel's centre, as GridPosition places the one sample of one cell
-        result = TraceSample(scene, settings, {i + real(0.5), j + real(0.5)}, i, j, 0, &log);
-    } else {
-        bool jitter = settings->sampling != SAMPLES_GRID;
-        GridCell cell = *firstCell;
-        for (int first = 0; first < n; first += kEyeRaysTogether) { // a few samples at a time
+    } else { // n samples, a few at a time; one sample is the pixel's centre (the handout's ray)
+        bool jitter = settings->sampling != SAMPLES_GRID && n > 1;
+        GridCell cell = FindCell(0, n);
+        for (int first = 0; first < n; first += kEyeRaysTogether) {
             int count = std::min(kEyeRaysTogether, n - first);
             vec2 p[kEyeRaysTogether];
             for (int s = first; s < first + count; s++) {
@@ -290,18 +291,11 @@ void PlanRender(const Scene *scene, RenderSettings *settings) {
     settings->camera.seed = settings->path.seed;
 }
 
-color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
-                  RayStats *stats) {
-    GridCell firstCell = FindCell(0, settings->samplesPerPixel);
-    return PixelColor(scene, settings, i, j, &firstCell, stats);
-}
-
 static void RenderRow(const Scene *scene, const RenderSettings *settings, int j, Image *image,
                       RayStats *stats) {
     uint8_t *out = &image->pixels[(size_t)j * settings->width * 3];
-    GridCell firstCell = FindCell(0, settings->samplesPerPixel); // (the same for every pixel)
     for (int i = 0; i < settings->width; i++) {
-        color c = PixelColor(scene, settings, i, j, &firstCell, stats);
+        color c = RenderPixel(scene, settings, i, j, stats);
         if (scene->shading == SHADING_PATH) // light, not a colour: encode it for the screen
             c = {SrgbEncode(c.x), SrgbEncode(c.y), SrgbEncode(c.z)};
         out[3 * i + 0] = ToByte(c.x);

@@ -172,10 +172,11 @@ bool LightsCanShow(const Scene *scene, const Material *m, color lightSum);
 color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
                const SelfHit *from, RayChain chain, TraceLog *log);
 
-// TraceRay for a primary ray whose nearest hit has been found already (FindEyeRayHits): `found`,
-// and *hit where it is.
-color TraceFoundEyeRay(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                       bool found, const RayHit *hit, TraceLog *log);
+// TraceRay's second half, for a ray whose nearest hit has been searched for (`found`, and *hit
+// where it is): the background on a miss, else the hit surface shaded (which may cast more rays).
+// TraceEyeRays calls it for the eye rays, whose hits are searched for together.
+color ShadeFound(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
+                 RayChain chain, bool found, const RayHit *hit, TraceLog *log);
 
 // Counts a ray of this kind.
 inline void CountRay(RayKind kind, RayStats *stats) {
@@ -257,16 +258,12 @@ inline bool Emits(const Material *m) { return m->emit.x > 0 || m->emit.y > 0 || 
 
 // ---- path.cpp: `shading path` -----------------------------------------------------------------
 
-// The light along `primary`, the camera ray of sample s of pixel (i, j), after any number of
-// bounces: one Monte Carlo path (see path.cpp). Counts its rays in log->stats, and records them
-// in log->tree if that is set.
-color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, int i,
-                int j, int s, TraceLog *log);
-
-// TracePath for an eye ray whose nearest hit has been found already (FindEyeRayHits): `found`,
-// and *hit where it is.
-color TraceFoundPath(const Scene *scene, const RenderSettings *settings, const Ray *primary,
-                     bool found, const RayHit *hit, int i, int j, int s, TraceLog *log);
+// The light along `primary`, the camera ray of sample s of pixel (i, j), whose nearest hit has
+// been searched for (`found`, and *hit where it is), after any number of bounces: one Monte Carlo
+// path (see path.cpp). Counts its rays in log->stats, and records them in log->tree if that is
+// set.
+color TracePath(const Scene *scene, const RenderSettings *settings, const Ray *primary, bool found,
+                const RayHit *hit, int i, int j, int s, TraceLog *log);
 
 // The shapes whose material emits, for next-event estimation (PlanEffects): each with its area's
 // square root, its normal (a triangle's) and its radiance. Shapes without area, or of an area
@@ -296,6 +293,13 @@ void PlanRender(const Scene *scene, RenderSettings *settings);
 // threads it ran on (the calling one and those it started): no more than the image has rows, or
 // than the system would start.
 int Render(const Scene *scene, const RenderSettings *settings, Image *image, RayStats *stats);
+
+// The colours of `count` eye rays (at most kEyeRaysTogether) of pixel (i, j), its samples s,
+// s + 1, ...: their nearest hits searched for together (FindEyeRayHits), then each traced on as
+// the scene's shading says (TracePath, or ShadeFound: the chain of rays). Every eye ray of a
+// render and of a probe (--pixel) takes this one route; one sample a pixel is count = 1.
+void TraceEyeRays(const Scene *scene, const RenderSettings *settings, const Ray *rays, int count,
+                  int i, int j, int s, TraceLog *log, color *colours);
 
 // The colour of pixel (i, j): the average of its samples, before clamping. `settings` must have
 // been planned for this scene (PlanRender).

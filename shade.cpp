@@ -52,16 +52,12 @@ struct Surface {
     RayChain chain;
 };
 
-// Whether the light shines on the hit: the assignment's hard shadow (LightVisible, geometry.cpp),
-// counted as one shadow ray. Without shapes that could block (Effects), no ray is needed.
-// Recording a ray tree, the shadow ray is recorded too, with the nearest shape that blocks it.
-[[maybe_unused]] static bool LightIsVisible(const Shading *sh, const RayHit *hit,
-                                            const Light *light) {
+// The bookkeeping of a shadow ray, which changes no colour: it is counted, its answer goes into
+// the hash of what a sample's rays met (adaptive sampling compares them), and when a ray tree is
+// being recorded (--pixel) it becomes a node, with the nearest shape that blocks it.
+static void LogShadowRay(const Shading *sh, const RayHit *hit, const Light *light, bool visible) {
     const Methods *methods = &sh->settings->methods;
-    if (!sh->settings->effects.shadows)
-        return true;
     sh->log->stats.shadow++;
-    bool visible = LightVisible(sh->scene, methods, hit, light->position);
     if (sh->settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads it
         sh->log->surfaces = MixSurface(sh->log->surfaces, !visible);
     Ray shadow;
@@ -71,6 +67,16 @@ struct Surface {
         n->hit = FindNearestHitFrom(sh->scene, *methods, &shadow, &from, 1, &n->record);
         n->light = visible ? light->intensity : color{0, 0, 0};
     }
+}
+
+// Whether the light shines on the hit: the assignment's hard shadow (LightVisible, geometry.cpp),
+// one shadow ray. Without shapes that could block (Effects), no ray is needed.
+[[maybe_unused]] static bool LightIsVisible(const Shading *sh, const RayHit *hit,
+                                            const Light *light) {
+    if (!sh->settings->effects.shadows) // (no shape could stand in the way)
+        return true;
+    bool visible = LightVisible(sh->scene, &sh->settings->methods, hit, light->position);
+    LogShadowRay(sh, hit, light, visible);
     return visible;
 }
 
@@ -280,17 +286,21 @@ static color ShadeHit(const Shading *sh, const Surface *s) {
     return result;
 }
 
-// The colour a ray brings back, once its nearest hit has been searched for (`found`, *hit): the
-// background on a miss, else the hit surface shaded (which may cast more rays). Counts the ray
-// and records it in the tree, if one is being drawn.
-static color ShadeFound(const Scene *scene, const RenderSettings *settings, RayKind kind,
-                        const Ray *ray, RayChain chain, bool found, const RayHit *hit,
-                        TraceLog *log) {
+// The bookkeeping of a ray, which changes no colour: it is counted, its answer goes into the hash
+// of what a sample's rays met (adaptive sampling compares them), and when a ray tree is being
+// recorded (--pixel) it becomes a node, whose index it returns (or -1) for CloseRay.
+static int LogRay(const RenderSettings *settings, RayKind kind, const Ray *ray, bool found,
+                  const RayHit *hit, TraceLog *log) {
     CountRay(kind, &log->stats);
     log->stats.primaryHits += kind == RAY_PRIMARY && found;
-    int node = RecordRay(kind, ray, log);
     if (settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads the hash
         log->surfaces = MixSurface(log->surfaces, found ? 2 * hit->index + hit->shape + 1 : 0);
+    return RecordRay(kind, ray, log);
+}
+
+color ShadeFound(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
+                 RayChain chain, bool found, const RayHit *hit, TraceLog *log) {
+    int node = LogRay(settings, kind, ray, found, hit, log);
     color result = found ? color{0, 0, 0} : BackgroundColor(scene, ray->dir);
     if (found) {
         int parent = log->current;
@@ -311,10 +321,6 @@ color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind,
     return ShadeFound(scene, settings, kind, ray, chain, found, &hit, log);
 }
 
-color TraceFoundEyeRay(const Scene *scene, const RenderSettings *settings, const Ray *ray,
-                       bool found, const RayHit *hit, TraceLog *log) {
-    return ShadeFound(scene, settings, RAY_PRIMARY, ray, RayChain{1, 1}, found, hit, log);
-}
 
 // ---- what a scene calls for ----------------------------------------------------------------
 

@@ -159,9 +159,7 @@ std::string PixelTreeJson(const Scene *scene, const RenderSettings *settings, in
     Ray ray;
     GetCameraRay(&settings->camera, settings->width, settings->height, SamplePosition(x, y, 0, 1),
                  &ray);
-    if (scene->shading == SHADING_PATH) // the centre's first path (sample 0)
-        TracePath(scene, settings, &ray, x, y, 0, &log);
-    else
-        TraceRay(scene, settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
+    color unused; // (under `shading path`, the centre's first path: sample 0)
+    TraceEyeRays(scene, settings, &ray, 1, x, y, 0, &log, &unused);
     return NodeJson(scene, tree, 0);
 }

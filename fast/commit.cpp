@@ -121,7 +121,7 @@ void CommitScene(Scene *scene, LayoutChoice choice, int threads, SceneLayout *la
     layout->triangleCount = triangles.size();
     layout->vectors = KernelHasVectors();
     layout->scene = scene;
-    layout->accelerator = {layout, SearchLayout, SearchEyeRays};
+    layout->accelerator = {layout, SearchLayout, AnswerEyeRays};
     scene->accelerator = &layout->accelerator;
 }
 

@@ -159,6 +159,10 @@ size_t LayoutBytes(const SceneLayout *layout);
 // The accelerator's two functions (kernel.cpp), as Accelerator declares them.
 bool SearchLayout(const Accelerator *self, const Scene *scene, Methods methods, const Ray *ray,
                   const SelfHit *from, real tMax, bool anyHit, RayHit *hit);
+void AnswerEyeRays(const Accelerator *self, const Scene *scene, Methods methods, const Ray *rays,
+                   int count, RayHit *hits, bool *found);
+// AnswerEyeRays's first step: the rays the kernel can take as packets, answered[k] set for each
+// ray whose found[k] and hits[k] it wrote.
 void SearchEyeRays(const Accelerator *self, const Scene *scene, Methods methods, const Ray *rays,
                    int count, RayHit *hits, bool *found, bool *answered);
 

@@ -319,6 +319,18 @@ void SearchEyeRays(const Accelerator *self, const Scene *scene, Methods methods,
     }
 }
 
+// Every eye ray answered: in packets where they pay, the others one at a time, as FindEyeRayHits's
+// plain loop would search them.
+void AnswerEyeRays(const Accelerator *self, const Scene *scene, Methods methods, const Ray *rays,
+                   int count, RayHit *hits, bool *found) {
+    bool answered[kEyeRaysTogether] = {};
+    SearchEyeRays(self, scene, methods, rays, count, hits, found, answered);
+    for (int k = 0; k < count; k++)
+        if (!answered[k])
+            found[k] = SearchLayout(self, scene, methods, &rays[k], &kNoSelfHit, kInfinity, false,
+                                    &hits[k]);
+}
+
 // What --stats says of the triangles.
 static std::string DescribeTriangles(const Scene *scene, const SceneLayout *layout,
                                      double buildSeconds) {

@@ -256,7 +256,7 @@ static void SameRenderScenes(Scene scenes[3]) {
 }
 
 // A pixel's colour as one sample at a time gives it (the grid's positions, SamplePosition), each
-// traced alone (TraceRay, TracePath): RenderPixel, which traces them in packets and finds their
+// traced alone (TraceRay; FindNearestHit, then TracePath): RenderPixel, which traces them in packets and finds their
 // cells row after row (NextCell), must give these very bits and count the same rays. Sample
 // counts whose grid rows differ in length (3: 1 + 2; 10: 3 + 3 + 4; 17: 4 + 4 + 4 + 5) and a
 // square (9).
@@ -272,8 +272,10 @@ static int PixelsThatDiffer(const Scene *scene, RenderSettings settings, int sam
             for (int k = 0; k < samples; k++) {
                 Ray ray;
                 GetCameraRay(&settings.camera, size, size, SamplePosition(i, j, k, samples), &ray);
+                RayHit hit;
+                bool found = FindNearestHit(scene, settings.methods, &ray, 0, kInfinity, &hit);
                 sum = sum + (scene->shading == SHADING_PATH
-                                 ? TracePath(scene, &settings, &ray, i, j, k, &log)
+                                 ? TracePath(scene, &settings, &ray, found, &hit, i, j, k, &log)
                                  : TraceRay(scene, &settings, RAY_PRIMARY, &ray, &kNoSelfHit,
                                             RayChain{1, 1}, &log));
             }
