@@ -36,7 +36,7 @@ PNG_LIBS := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 # The teaching core at the top (every scene_*.cpp is a scene built in C++: README, "Writing a
 # scene in C++"), and the three wings: robust/, fast/ and app/.
 SCENES = $(basename $(wildcard scene_*.cpp))
-TOP = geometry camera blur shade path render smooth $(SCENES)
+TOP = geometry camera blur shade path path_full render smooth $(SCENES)
 ROBUST = robust/watertight robust/plane robust/rescale robust/leave
 FAST = fast/commit fast/commit_tree fast/build fast/kernel fast/commit_spheres
 APP = app/options app/modes app/image app/image_read app/text app/scene_file app/statements \

@@ -1,6 +1,6 @@
 // path_sampling.h -- the path tracer's random numbers, directions and points on emitters: the
-// Monte Carlo half of `shading path`, each formula with its source. Included by path.cpp alone
-// (its functions are static, as they would be in one file).
+// Monte Carlo half of `shading path`, each formula with its source (included through path.h by the
+// two estimators' files; its functions are inline, each file keeping those it uses).
 #pragma once
 #include "ray.h"
 #include "render.h"
@@ -17,7 +17,7 @@ struct PathSample {
 // render.cpp) over the seed, the pixel, the sample, the bounce and the decision, with a word of
 // its own so these never repeat the jitter's numbers. The first four words are mixed once a path
 // (PathKey), the last once a decision: the same bits as mixing all five every time.
-static PathSample PathKey(int seed, int i, int j, int s) {
+static inline PathSample PathKey(int seed, int i, int j, int s) {
     uint64_t z = 0x70617468; // "path"
     for (uint64_t word : {(uint64_t)seed, (uint64_t)i, (uint64_t)j, (uint64_t)s})
         z = MixWord(z, word);
@@ -25,19 +25,19 @@ static PathSample PathKey(int seed, int i, int j, int s) {
 }
 // The hashes each bounce may take: its decisions (path.cpp) and the tries of its disk points.
 const int kDimensionsPerBounce = 16;
-static uint64_t PathHash(const PathSample *p, int bounce, int dimension) {
+static inline uint64_t PathHash(const PathSample *p, int bounce, int dimension) {
     return MixWord(p->key, (uint64_t)bounce * kDimensionsPerBounce + (uint64_t)dimension);
 }
 
 // A random number in [0, 1) from 24 of the bits: exact in float too, and below 1.
-static real PathRandom(const PathSample *p, int bounce, int dimension) {
+static inline real PathRandom(const PathSample *p, int bounce, int dimension) {
     return real((PathHash(p, bounce, dimension) >> 40) * (1.0 / 16777216.0));
 }
 
 // Two such numbers from one hash: its top 24 bits and the 24 below them. Every bit of the
 // finaliser's output depends on every bit of its input, so the two are as independent as two
 // hashes would be, for one hash's work.
-static vec2 PathRandomPair(const PathSample *p, int bounce, int dimension) {
+static inline vec2 PathRandomPair(const PathSample *p, int bounce, int dimension) {
     uint64_t bits = PathHash(p, bounce, dimension);
     return {real((bits >> 40) * (1.0 / 16777216.0)),
             real((bits >> 16 & 0xffffff) * (1.0 / 16777216.0))};
@@ -46,7 +46,7 @@ static vec2 PathRandomPair(const PathSample *p, int bounce, int dimension) {
 // Two unit vectors that make an orthonormal basis with the unit n (Duff et al., "Building an
 // Orthonormal Basis, Revisited", JCGT 6(1), 2017: no division by a small number, no branch on
 // which axis n is near).
-static void Basis(vec3 n, vec3 *t, vec3 *b) {
+static inline void Basis(vec3 n, vec3 *t, vec3 *b) {
     real sign = std::copysign(real(1), n.z);
     real a = -1 / (sign + n.z), c = n.x * n.y * a;
     *t = {1 + sign * n.x * n.x * a, sign * c, -sign * n.x};
@@ -55,7 +55,7 @@ static void Basis(vec3 n, vec3 *t, vec3 *b) {
 
 // The density (per solid angle) with which the scatter method draws a direction at angle theta
 // from the normal: cos(theta) / pi, or 1 / (2 pi) over the hemisphere.
-static real ScatterPdf(ScatterMethod method, real cosTheta) {
+static inline real ScatterPdf(ScatterMethod method, real cosTheta) {
     return method == SCATTER_COSINE ? cosTheta / kPi : 1 / (2 * kPi);
 }
 
@@ -89,7 +89,7 @@ static inline vec2 DiskPoint(const PathSample *p, int bounce, int first) {
 //   uniform: cos(theta) = 1 - r^2, uniform in (0, 1] (Archimedes: equal heights cut equal areas
 //     from a sphere), so sin(theta) = r sqrt(2 - r^2), and the tangent part is (x, y) times
 //     sqrt(2 - r^2).
-static vec3 ScatterDirection(ScatterMethod method, vec3 n, vec2 disk) {
+static inline vec3 ScatterDirection(ScatterMethod method, vec3 n, vec2 disk) {
     // (the max: DiskPoint's last resort, by angle, may round r^2 a hair above 1)
     real x = disk.x, y = disk.y, r2 = x * x + y * y;
     real cosTheta = std::sqrt(std::max(real(0), 1 - r2));
@@ -105,7 +105,7 @@ static vec3 ScatterDirection(ScatterMethod method, vec3 n, vec2 disk) {
 // Veach's power heuristic (Veach, "Robust Monte Carlo Methods for Light Transport Simulation",
 // 1997, §9.2.4, beta = 2): the weight of a sample drawn with density a, when density b could
 // also have drawn it.
-static real PowerHeuristic(real a, real b) {
+static inline real PowerHeuristic(real a, real b) {
     if (!(a > 0))
         return 0;
     real r = b / a; // (as a ratio: a^2 alone can overflow for a tiny, distant emitter)
@@ -116,7 +116,7 @@ static real PowerHeuristic(real a, real b) {
 
 // A point drawn uniformly over an emitting sphere, and the unit normal there: a random unit
 // vector from the centre (RandomUnitVector, render.h).
-static void SampleSphere(const Sphere *s, vec2 disk, vec3 *p, vec3 *n) {
+static inline void SampleSphere(const Sphere *s, vec2 disk, vec3 *p, vec3 *n) {
     *n = RandomUnitVector(disk);
     *p = s->center + s->radius * *n;
 }
@@ -134,7 +134,7 @@ struct SphereCone {
 };
 
 // false where x is not outside the sphere (then no cone: every point of it may face x).
-static bool ConeOfSphere(const Sphere *s, vec3 x, SphereCone *cone) {
+static inline bool ConeOfSphere(const Sphere *s, vec3 x, SphereCone *cone) {
     vec3 toCentre = s->center - x;
     real d = SafeLength(toCentre);
     if (!(d > s->radius))
@@ -151,7 +151,7 @@ static bool ConeOfSphere(const Sphere *s, vec3 x, SphereCone *cone) {
 // centre between it and x's side: cos alpha = sin^2 theta / sin thetaMax + cos theta
 // sqrt(1 - sin^2 theta / sin^2 thetaMax) (pbrt-v4, §6.2.4), found from the triangle x, centre,
 // point by the law of sines, with no ray to cast.
-static vec3 SampleSphereCone(const Sphere *s, const SphereCone *cone, vec2 uv, vec3 *n) {
+static inline vec3 SampleSphereCone(const Sphere *s, const SphereCone *cone, vec2 uv, vec3 *n) {
     real h = uv.x * cone->oneMinusCos, cosTheta = 1 - h, sin2Theta = h * (2 - h);
     real ratio = sin2Theta / (cone->sinMax * cone->sinMax); // (in [0, 1] but for rounding)
     real cosAlpha = sin2Theta / cone->sinMax + cosTheta * std::sqrt(std::max(real(0), 1 - ratio));
@@ -165,14 +165,14 @@ static vec3 SampleSphereCone(const Sphere *s, const SphereCone *cone, vec2 uv, v
 
 // The density, per solid angle, of drawing a direction in the cone of one of `count` emitters:
 // 1 / count for the emitter, 1 / (2 pi (1 - cos thetaMax)) for the direction.
-static real ConePdf(size_t count, const SphereCone *cone) {
+static inline real ConePdf(size_t count, const SphereCone *cone) {
     return 1 / ((real)count * 2 * kPi * cone->oneMinusCos);
 }
 
 // A point drawn uniformly over an emitting triangle, from two uniform numbers (u, v):
 // barycentric coordinates from the square root of u, which spreads the points evenly (Shirley &
 // Chiu 1997; pbrt-v4 §A.5.4). Its normal is the emitter's.
-static vec3 SampleTriangle(const Triangle *t, vec2 uv) {
+static inline vec3 SampleTriangle(const Triangle *t, vec2 uv) {
     real root = std::sqrt(uv.x), b0 = 1 - root, b1 = uv.y * root;
     return b0 * t->a + b1 * t->b + (1 - b0 - b1) * t->c;
 }
@@ -183,7 +183,7 @@ static vec3 SampleTriangle(const Triangle *t, vec2 uv) {
 // times distance^2 / cosLight from area to solid angle. Written as (distance / sqrtArea)^2, a ratio
 // of lengths squared: a squared distance alone overflows from 1.3e154 (float 1.8e19) and leaves
 // the normal numbers below 1.5e-154 (float 1.1e-19), while the ratio is the same at every scale.
-static real EmitterPdf(size_t count, real sqrtArea, real distance, real cosLight) {
+static inline real EmitterPdf(size_t count, real sqrtArea, real distance, real cosLight) {
     real ratio = distance / sqrtArea;
     return ratio * ratio / ((real)count * cosLight);
 }

@@ -1,7 +1,7 @@
 // render.h -- how a render lights and samples what the rays hit: the render's settings, the
 // effects a scene calls for, chains and trees of rays; lighting, mirrors and glass (shade.cpp);
-// the path tracer of `shading path` (path.cpp); the render loop on all cores and its sampling
-// (render.cpp). The scene, the cameras and the nearest hit are ray.h's.
+// the path tracer of `shading path` (path.cpp, path_full.cpp); the render loop on all cores and
+// its sampling (render.cpp). The scene, the cameras and the nearest hit are ray.h's.
 #pragma once
 #include "ray.h"
 
@@ -32,7 +32,7 @@ struct Effects {
     bool antialiasing;             // more than one sample per pixel
     bool indirect;                 // `shading path`: light scattered by diffuse surfaces
     std::vector<Emitter> emitters; // `shading path`: the shapes that emit, for next-event
-                                   // estimation (path.cpp)
+                                   // estimation (path_full.cpp)
     color lightSum;                // every light's intensity added up
     bool defocus = false;          // a camera with a lens: eye rays start on its disk (blur.cpp)
     bool fuzz = false;             // a mirror with fuzz, and depth > 1
@@ -256,7 +256,7 @@ real SchlickReflectance(real cosI, real eta);
 // Whether a material gives off light (`emit` above 0 in some channel).
 inline bool Emits(const Material *m) { return m->emit.x > 0 || m->emit.y > 0 || m->emit.z > 0; }
 
-// ---- path.cpp: `shading path` -----------------------------------------------------------------
+// ---- path.cpp, path_full.cpp: `shading path` ---------------------------------------------------
 
 // The light along `primary`, the camera ray of sample s of pixel (i, j), whose nearest hit has
 // been searched for (`found`, and *hit where it is), after any number of bounces: one Monte Carlo

@@ -5,7 +5,7 @@
 // window a triangle's hit lies in, which the BVH's boxes share); the plane's t and its error bound
 // (plane.cpp); the watertight inside test's shear (watertight.cpp); and how a ray leaves a surface
 // without hitting it again (OffsetRayOrigin, LeavingPoint, TerminatorOrigin: leave.cpp,
-// PassesOver, StartLeaving: geometry.cpp, smooth.cpp and path.cpp).
+// PassesOver, StartLeaving: geometry.cpp, smooth.cpp and path_full.cpp).
 #pragma once
 #include "../ray.h"
 
@@ -243,7 +243,7 @@ template <int kz> inline void ShearRayAxes(const Ray *ray, RayShear *shear) {
 bool IntersectWatertight(const Triangle *tri, const TriangleSetUp *setUp, const Ray *ray,
                          const RayShear *shear, real tMin, real tMax, RayHit *hit);
 
-// ---- geometry.cpp and path.cpp: rays that leave a surface --------------------------------------
+// ---- geometry.cpp and path_full.cpp: rays that leave a surface ---------------------------------
 
 // Self-intersection ("shadow acne") is prevented by one method for every ray that leaves a
 // surface (pbrt-v4 §6.8.6): a point within `error` (per axis) of the true surface, moved along

@@ -60,8 +60,9 @@ region() {
         tools/starter/stubs.txt "$1" >"$kit/$1"
 }
 for file in ray.h ray.cpp camera.cpp blur.cpp geometry.cpp shade.cpp smooth.cpp render.cpp render.h \
-    path.cpp path_sampling.h numbers.h scene_*.cpp app/*.h app/*.cpp tests/test.h tests/test_handout.h \
-    tests/test_handout.cpp tests/test_handout_light.cpp tests/kit_main.cpp; do
+    path.cpp path_full.cpp path.h path_sampling.h numbers.h scene_*.cpp app/*.h app/*.cpp \
+    tests/test.h tests/test_handout.h tests/test_handout.cpp tests/test_handout_light.cpp \
+    tests/kit_main.cpp; do
     region "$file"
 done
 if [ $wings = 1 ]; then
