@@ -8,7 +8,7 @@
 //   bench raw PNG RGB   the pixels of a PNG as a raw RGB file
 //   bench pngfloor RGB PNG   writes the raw 512 x 512 RGB file as a PNG, nothing else: the floor
 //                       for the whole-process time of `ray`
-//   bench robustness    prints the measured tables of docs/robustness.md (robustness.cpp)
+//   bench robustness    prints the measured tables of docs/bench/robustness.md (robustness.cpp)
 //   bench methods [DIR] what each numerical method costs and buys (methods.cpp); with DIR, also
 //                       the pictures of a fixed epsilon at the wrong scale
 //   bench layout DIR    render time against mesh size, list against BVH (layout.cpp):

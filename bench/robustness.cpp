@@ -1,4 +1,4 @@
-// bench/robustness.cpp -- `rtbench robustness`: the measured tables of docs/robustness.md.
+// bench/robustness.cpp -- `rtbench robustness`: the measured tables of docs/bench/robustness.md.
 //
 // Where the claims of rt's robustness hold, in this build's precision: long triangles (closed
 // boxes, big floors, slivers, axis-aligned and turned), the assignment scene at every scale and

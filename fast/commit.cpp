@@ -13,7 +13,7 @@
 
 // Below this many triangles the blocks are one list: a ray then tests them all, which is
 // cheaper than walking a tree for the assignment's five triangles. `make bench` (its mesh table,
-// docs/speed.md) shows the tree winning from about this size on.
+// docs/bench/speed.md) shows the tree winning from about this size on.
 const size_t kBvhMinTriangles = 32;
 
 // One block: the triangles at places index[0..n) lane by lane; empty lanes repeat lane 0's

@@ -20,7 +20,7 @@
 const int kMaxSahDepth = 48;
 
 // Below this many spheres they are one list of blocks: a tree's walk costs more than testing a
-// few blocks (`make bench`'s sphere table, docs/speed.md).
+// few blocks (`make bench`'s sphere table, docs/bench/speed.md).
 const size_t kBvhMinSpheres = 64;
 
 // The leaves: blocks of kLanes, at most four a leaf.

@@ -1,5 +1,5 @@
 // tests/robust_scenes.h -- the scenes of rt's robustness claims, shared by the tests (which
-// assert them) and `make bench` (which measures the table in docs/robustness.md).
+// assert them) and `make bench` (which measures the table in docs/bench/robustness.md).
 #ifndef RT_ROBUST_SCENES_H
 #define RT_ROBUST_SCENES_H
 

@@ -3,7 +3,7 @@
 // A corridor 1e8 units long is two triangles per wall, each 1e8 long and a few units wide. The
 // watertight test's own t loses about u L^2 / w there, more than the way to the floor; rt takes
 // t from the plane (plane.cpp). Every check below runs in double and in float, each over the
-// lengths that precision holds (docs/robustness.md has the measured table), axis-aligned and
+// lengths that precision holds (docs/bench/robustness.md has the measured table), axis-aligned and
 // rotated (corners rounded after an exact rotation, so the walls are no longer on the grid).
 #include "../robust/robust.h"
 #include "robust_scenes.h"
