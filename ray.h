@@ -384,48 +384,6 @@ vec3 DeparturePoint(const Scene *scene, const Methods *methods, const RayHit *hi
 
 // ---- the seam: speed machinery that main may install (fast/) --------------------------------
 
-// Beyond the handouts, a step every search takes first (SearchList, and fast/ the same way): a
-// ray whose direction is too large or too small to square is searched along a rescaled direction.
-// Whether a ray's direction is searched for as it is: inside kDirectionWindow (numbers.h), which
-// ScaleRay leaves alone.
-inline bool SearchedAsIs(vec3 dir) { return WithinWindow(MaxComponent(dir), kDirectionWindow); }
-
-// A ray whose direction lies outside kDirectionWindow, rescaled to a largest component in [1, 2),
-// with its interval, so that no shape test squares or divides a direction of 1e-200 or 1e200 out
-// of range. Scaling d by 2^k scales every t by 2^-k exactly; ScaleBack undoes it. k = 0: the
-// direction is inside the window, and the ray is searched as given (`ray` is not set).
-struct ScaledRay {
-    Ray ray;
-    int k;
-    real tMin, tMax;
-};
-
-// The rescaling itself, for a direction outside the window (ScaleRay): robust/rescale.cpp.
-bool RescaleRay(const Ray *ray, ScaledRay *s);
-
-// The ray rescaled where its direction lies outside the window, and (tMin, tMax) with it, cut so
-// that every t' in it comes back inside (tMin, tMax). False for a direction that is zero or not
-// finite: such a ray has no answer. (Inline: every search starts here, and almost every
-// direction is inside the window.)
-inline bool ScaleRay(const Ray *ray, real tMin, real tMax, ScaledRay *s) {
-    s->k = 0, s->tMin = tMin, s->tMax = tMax;
-    return SearchedAsIs(ray->dir) || RescaleRay(ray, s);
-}
-
-// The ray a search follows: the rescaled one, or the one given.
-inline const Ray *SearchedRay(const ScaledRay *s, const Ray *given) {
-    return s->k == 0 ? given : &s->ray;
-}
-
-// The hit's t in units of the original direction; false if that leaves (tMin, tMax) by
-// overflowing or underflowing.
-inline bool ScaleBack(const ScaledRay *s, real tMin, real tMax, RayHit *hit) {
-    if (s->k == 0)
-        return true;
-    hit->t = ScaleByPowerOfTwo(hit->t, s->k);
-    return hit->t > tMin && hit->t < tMax;
-}
-
 // The plain loop over the list of shapes, as the handouts write it: every search above, where no
 // accelerator is installed. (anyHit: stop at the first hit, as AnyHit does.)
 bool SearchList(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from, real tMax,
@@ -434,7 +392,7 @@ bool SearchList(const Scene *scene, Methods methods, const Ray *ray, const SelfH
 // Another way to answer the searches above, bit for bit as SearchList answers, only faster: the
 // shapes in blocks tested several at a time, a bounding volume hierarchy over the triangles, a
 // pixel's eye rays tested together (fast/fast.h). main installs one in scene->accelerator; the
-// core calls it at one marked line and never looks inside. `search` answers every search it is
+// core calls it at two marked lines (Search, FindEyeRayHits) and never looks inside. `search` answers every search it is
 // given, as SearchList does (and runs SearchList itself where it cannot, as for the handouts'
 // methods); `eyeRays` answers every ray FindEyeRayHits is given, as its plain loop would.
 struct Accelerator {
@@ -450,17 +408,7 @@ struct Accelerator {
 // The scene every scene starts from (the built-in ones and every scene file): nothing in it,
 // 512 x 512, `camera perspective 0 0 0 2 2`, ambient 0.2, floor shading, black background,
 // depth 10.
-inline void InitScene(Scene *scene) {
-    *scene = Scene();
-    scene->width = scene->height = 512;
-    scene->camera = Camera();
-    scene->camera.kind = CAMERA_PERSPECTIVE;
-    scene->camera.perspective = {{0, 0, 0}, 2, 2, 512, 512};
-    scene->shading = SHADING_FLOOR;
-    scene->ambient = real(0.2);
-    scene->background = {0, 0, 0};
-    scene->depth = 10;
-}
+void InitScene(Scene *scene);
 
 void BuildDefaultScene(Scene *scene); // the assignment scene (the handout's scene;
                                       // scenes/reference.scene holds it as a file)

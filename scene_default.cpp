@@ -1,10 +1,22 @@
-// scene_default.cpp -- the assignment scene (the handout's scene; scenes/reference.scene holds it
-// as a file), as data.
+// scene_default.cpp -- the scene every scene starts from (InitScene), and the assignment scene (the
+// handout's scene; scenes/reference.scene holds it as a file), as data.
 //
 // 512 x 512, the handout's Perspective camera at the origin (screen 2 units wide, 2 away), one
 // white point light, ambient floor 0.2, black background, at most 10 rays in a chain: two mirror
 // spheres and a red one in a box of a blue back wall, a white floor and a red right wall.
 #include "ray.h"
+
+void InitScene(Scene *scene) {
+    *scene = Scene();
+    scene->width = scene->height = 512;
+    scene->camera = Camera();
+    scene->camera.kind = CAMERA_PERSPECTIVE;
+    scene->camera.perspective = {{0, 0, 0}, 2, 2, 512, 512};
+    scene->shading = SHADING_FLOOR;
+    scene->ambient = real(0.2);
+    scene->background = {0, 0, 0};
+    scene->depth = 10;
+}
 
 void BuildDefaultScene(Scene *scene) {
     InitScene(scene); // 512 x 512, camera perspective 0 0 0 2 2, ambient 0.2, floor, depth 10

@@ -1,7 +1,8 @@
 // robust/robust.h -- the robust wing: what rt computes beyond the handouts so that no answer
 // depends on the scene's scale, and what the core calls at its `// robust:` lines.
 //
-// Here: boxes along a ray (the
+// Here: the rescaling of a ray whose direction is too large or too small to square (rescale.cpp,
+// the first step of every search: SearchList, and fast/ the same way); boxes along a ray (the
 // window a triangle's hit lies in, which the BVH's boxes share); the plane's t and its error bound
 // (plane.cpp); the watertight inside test's shear (watertight.cpp); and how a ray leaves a surface
 // without hitting it again (OffsetRayOrigin, LeavingPoint, TerminatorOrigin: leave.cpp,
@@ -33,6 +34,50 @@ inline real NextAfter(real x, bool up) {
 struct dvec3 {
     double x, y, z;
 };
+
+// ---- rescale.cpp: directions too large or too small to square --------------------------------
+
+// Beyond the handouts, a step every search takes first (SearchList, and fast/ the same way): a
+// ray whose direction is too large or too small to square is searched along a rescaled direction.
+// Whether a ray's direction is searched for as it is: inside kDirectionWindow (numbers.h), which
+// ScaleRay leaves alone.
+inline bool SearchedAsIs(vec3 dir) { return WithinWindow(MaxComponent(dir), kDirectionWindow); }
+
+// A ray whose direction lies outside kDirectionWindow, rescaled to a largest component in [1, 2),
+// with its interval, so that no shape test squares or divides a direction of 1e-200 or 1e200 out
+// of range. Scaling d by 2^k scales every t by 2^-k exactly; ScaleBack undoes it. k = 0: the
+// direction is inside the window, and the ray is searched as given (`ray` is not set).
+struct ScaledRay {
+    Ray ray;
+    int k;
+    real tMin, tMax;
+};
+
+// The rescaling itself, for a direction outside the window (ScaleRay): robust/rescale.cpp.
+bool RescaleRay(const Ray *ray, ScaledRay *s);
+
+// The ray rescaled where its direction lies outside the window, and (tMin, tMax) with it, cut so
+// that every t' in it comes back inside (tMin, tMax). False for a direction that is zero or not
+// finite: such a ray has no answer. (Inline: every search starts here, and almost every
+// direction is inside the window.)
+inline bool ScaleRay(const Ray *ray, real tMin, real tMax, ScaledRay *s) {
+    s->k = 0, s->tMin = tMin, s->tMax = tMax;
+    return SearchedAsIs(ray->dir) || RescaleRay(ray, s);
+}
+
+// The ray a search follows: the rescaled one, or the one given.
+inline const Ray *SearchedRay(const ScaledRay *s, const Ray *given) {
+    return s->k == 0 ? given : &s->ray;
+}
+
+// The hit's t in units of the original direction; false if that leaves (tMin, tMax) by
+// overflowing or underflowing.
+inline bool ScaleBack(const ScaledRay *s, real tMin, real tMax, RayHit *hit) {
+    if (s->k == 0)
+        return true;
+    hit->t = ScaleByPowerOfTwo(hit->t, s->k);
+    return hit->t > tMin && hit->t < tMax;
+}
 
 // ---- boxes and a triangle's set-up (plane.cpp, and the BVH of fast/) ------------------------
 
