@@ -55,11 +55,11 @@ void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord,
 // (SafeNormalize), so a camera 1e200 from its target works, and the corner is kept relative to
 // the eye (toCorner), so a camera 1e30 from the origin does too. The lens disk lies in the plane
 // of u and v, as the book's defocus_disk_u and defocus_disk_v.
-bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen,
+bool LookAtToScreen(const Camera *camera, int width, int height, Camera *screen,
                     std::string *error) {
-    vec3 w = SafeNormalize(lookAt->from - lookAt->to);
-    vec3 u = SafeNormalize(Cross(SafeNormalize(lookAt->up), w));
-    real fov = lookAt->fovDegrees;
+    vec3 w = SafeNormalize(camera->lookFrom - camera->lookAt);
+    vec3 u = SafeNormalize(Cross(SafeNormalize(camera->vup), w));
+    real fov = camera->fovDegrees;
     if (!(MaxComponent(w) > 0) || !IsFinite(w)) {
         *error = "from and to are the same point (or too far apart to subtract)";
         return false;
@@ -74,15 +74,15 @@ bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen,
     }
     vec3 v = Cross(w, u);
     real halfHeight = std::tan(fov * real(M_PI / 360)), halfWidth = halfHeight * width / height;
-    *screen = *lookAt;
+    *screen = *camera;
     screen->kind = CAMERA_SCREEN;
-    screen->eye = lookAt->from;
+    screen->eye = camera->lookFrom;
     screen->toCorner = -w - halfWidth * u - halfHeight * v;
-    screen->lowerLeft = lookAt->from + screen->toCorner;
+    screen->lowerLeft = camera->lookFrom + screen->toCorner;
     screen->horizontal = (2 * halfWidth) * u;
     screen->vertical = (2 * halfHeight) * v;
-    screen->lensU = lookAt->lensRadius * u;
-    screen->lensV = lookAt->lensRadius * v;
+    screen->lensU = camera->lensRadius * u;
+    screen->lensV = camera->lensRadius * v;
     return true;
 }
 

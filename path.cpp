@@ -20,8 +20,8 @@
 // leaves the surface (`out` may be `in`) and its kind; false where a fuzzy mirror's direction,
 // drawn from its fuzz sphere with the numbers a diffuse bounce would scatter with (a bounce that
 // reflects does not scatter), points into the surface: the book's metal absorbs it.
-bool MirrorOrGlass(const Path *path, const Ray *in, const RayHit *hit, const Material *m,
-                   real pick, Ray *out, SelfHit *from, RayKind *kind) {
+bool MirrorOrGlass(const Path *path, const Ray *in, const RayHit *hit, const Material *m, real pick,
+                   Ray *out, SelfHit *from, RayKind *kind) {
     const Scene *scene = path->scene;
     const Methods *methods = &path->settings->methods;
     vec3 d = SafeNormalize(in->dir), n = hit->normal, dir = Reflect(d, n);

@@ -38,8 +38,8 @@ struct Path {
     int scatteredIndex;
     bool departs; // the rays from this diffuse hit start at `departure` (Depart)
     vec3 departure;
-    vec3 shading; // the diffuse hit's SurfaceNormal: its lighting and scattering use it (a
-                  // scattered ray must also leave on the side of its geometric normal)
+    vec3 shadingNormal; // the diffuse hit's SurfaceNormal: its lighting and scattering use it
+                        // (a scattered ray must also leave on the side of its geometric normal)
 };
 
 // RecordRay for a path's rays, with no call where no tree is being drawn (every pixel but the
@@ -53,8 +53,8 @@ inline real Random(const Path *path, Decision d) {
 }
 
 // A mirror's or glass's next ray, for both estimators (path.cpp).
-bool MirrorOrGlass(const Path *path, const Ray *in, const RayHit *hit, const Material *m,
-                   real pick, Ray *out, SelfHit *from, RayKind *kind);
+bool MirrorOrGlass(const Path *path, const Ray *in, const RayHit *hit, const Material *m, real pick,
+                   Ray *out, SelfHit *from, RayKind *kind);
 
 // rt's estimator (path_full.cpp): the path from its eye ray, whose nearest hit has been searched
 // for (foundFirst, *firstHit), to its end; the light it brings to the pixel.

@@ -83,7 +83,7 @@ static bool EmitterVisible(Path *path, const RayHit *hit, const Emitter *e, vec3
     bool visible = !found || (blocker.shape == e->shape && blocker.index == e->index);
     if (node >= 0) {
         RayNode *n = &(*path->log->tree)[node];
-        n->hit = found && !visible;
+        n->found = found && !visible;
         if (found)
             n->record = blocker;
     }
@@ -100,7 +100,7 @@ static color PointLights(Path *path, const RayHit *hit, color rho) {
             continue;
         vec3 toLight = light.position - hit->point;
         real distance = SafeLength(toLight);
-        real cosTheta = Dot(path->shading, toLight) / distance;
+        real cosTheta = Dot(path->shadingNormal, toLight) / distance;
         if (!(cosTheta > 0))
             continue;
         Ray shadow;
@@ -110,7 +110,7 @@ static color PointLights(Path *path, const RayHit *hit, color rho) {
             int node = Record(RAY_SHADOW, &shadow, path->log);
             bool blocked = AnyHitFrom(path->scene, path->settings->methods, &shadow, &from, 1);
             if (node >= 0)
-                (*path->log->tree)[node].hit = blocked;
+                (*path->log->tree)[node].found = blocked;
             if (blocked)
                 continue;
         }
@@ -154,7 +154,7 @@ static color Emitters(Path *path, const RayHit *hit, color rho, bool last) {
                            PathRandomPair(&path->sample, path->bounce, EMITTER_UV));
     vec3 toPoint = p - hit->point;
     real distance = SafeLength(toPoint); // (rescaled where its square would leave the numbers)
-    real cosTheta = Dot(path->shading, toPoint) / distance;
+    real cosTheta = Dot(path->shadingNormal, toPoint) / distance;
     real cosLight = std::fabs(Dot(n, toPoint)) / distance;
     if (!(cosTheta > 0) || !(cosLight > 0) || (!inCone && !Faces(path->scene, e, hit, p, n)) ||
         !EmitterVisible(path, hit, e, p))
@@ -210,7 +210,7 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     color rho = m->diffuse;
     if (!(MaxComponent(rho) > 0)) // black: it scatters nothing, not even the lights' light
         return false;
-    path->shading = SurfaceNormal(path->scene, hit);
+    path->shadingNormal = SurfaceNormal(path->scene, hit);
     Depart(path, hit); // step 1: the emitters' shadow ray first, then the point lights'
     color direct = Emitters(path, hit, rho, last);
     if (!path->scene->lights.empty())
@@ -219,7 +219,7 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     if (last)
         return false;
     ScatterMethod method = path->settings->path.scatter; // step 3: cosine sampling, drawn
-    vec3 n = path->shading;
+    vec3 n = path->shadingNormal;
     vec3 dir = ScatterDirection(method, n, DiskPoint(&path->sample, path->bounce, SCATTER_DISK));
     real cosTheta = Dot(dir, n);
     if (!(cosTheta > 0) || !(Dot(dir, hit->normal) > 0)) // (below the flat triangle: absorbed)
@@ -291,7 +291,7 @@ color FullPath(Path *path, bool foundFirst, const RayHit *firstHit) {
                                                       &path->from, kInfinity, &hit);
         if (number == 1 && found)
             hit = *firstHit;
-        if (node >= 0 && ((*log->tree)[node].hit = found))
+        if (node >= 0 && ((*log->tree)[node].found = found))
             (*log->tree)[node].record = hit;
         if (!found) {
             path->light = path->light + path->through * BackgroundColor(scene, path->ray.dir);
@@ -310,4 +310,3 @@ color FullPath(Path *path, bool foundFirst, const RayHit *firstHit) {
         FinishTree(path, nodes);
     return path->light;
 }
-

@@ -66,7 +66,7 @@ struct Camera {
     vec3 toCorner;           // l - e, the corner seen from the eye (set by PlanRender): every
                              // pixel's direction is built from it, never from l itself, so it
                              // does not depend on how far the eye is from the origin
-    vec3 from, to, up;       // CAMERA_LOOKAT
+    vec3 lookFrom, lookAt, vup; // CAMERA_LOOKAT (the scene file's from, to and up)
     real fovDegrees;         // CAMERA_LOOKAT: vertical field of view
     bool fromScreen;         // the slides' GetRay: rays start at the pixel on the screen, with
                              // unit length (set by PlanRender from the methods)
@@ -260,7 +260,7 @@ void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord,
 // A `camera lookat` in the screen form for a W x H image, the screen one unit in front of the
 // eye, with its lens's radii. Returns false, with *error saying which, if from = to, up is along
 // the view, or fov is not in (0, 180).
-bool LookAtToScreen(const Camera *lookAt, int width, int height, Camera *screen,
+bool LookAtToScreen(const Camera *camera, int width, int height, Camera *screen,
                     std::string *error);
 
 // Beyond the handouts, Ray Tracing in One Weekend's thin lens, for a lookat camera in the screen

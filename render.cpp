@@ -42,14 +42,14 @@ real SrgbEncode(real linear) {
     return real(1.055) * std::pow(std::min(real(1), linear), real(1) / real(2.4)) - real(0.055);
 }
 
-static void AddStats(const RayStats *from, RayStats *to) {
-    to->primary += from->primary;
-    to->shadow += from->shadow;
-    to->reflection += from->reflection;
-    to->refraction += from->refraction;
-    to->specularTerms += from->specularTerms;
-    to->diffuse += from->diffuse;
-    to->primaryHits += from->primaryHits;
+static void AddStats(const RayStats *part, RayStats *total) {
+    total->primary += part->primary;
+    total->shadow += part->shadow;
+    total->reflection += part->reflection;
+    total->refraction += part->refraction;
+    total->specularTerms += part->specularTerms;
+    total->diffuse += part->diffuse;
+    total->primaryHits += part->primaryHits;
 }
 
 // Cell s of n inside the unit pixel, on a regular grid that holds exactly n cells: `rows` =

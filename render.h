@@ -142,7 +142,7 @@ struct RayStats {
 struct RayNode {
     RayKind kind;
     Ray ray;
-    bool hit;      // for a shadow ray: it was blocked
+    bool found;    // it met a shape (for a shadow ray: it was blocked)
     RayHit record; // the hit, or the blocker of a shadow ray
     color light;   // colour brought back (for a shadow ray: the light's share when visible)
     int parent;

@@ -29,7 +29,7 @@ void CloseRay(TraceLog *log, int node, bool found, const RayHit *hit, color ligh
     if (node < 0)
         return;
     RayNode *n = &(*log->tree)[node];
-    n->hit = found;
+    n->found = found;
     if (found)
         n->record = *hit;
     n->light = light;
@@ -37,7 +37,7 @@ void CloseRay(TraceLog *log, int node, bool found, const RayHit *hit, color ligh
 
 // What every shading function needs besides the surface: the world, how it is rendered, and
 // where the rays cast are counted (and recorded, for a ray tree).
-struct Shading {
+struct ShadeContext {
     const Scene *scene;
     const RenderSettings *settings;
     TraceLog *log;
@@ -55,7 +55,7 @@ struct Surface {
 // The bookkeeping of a shadow ray, which changes no colour: it is counted, its answer goes into
 // the hash of what a sample's rays met (adaptive sampling compares them), and when a ray tree is
 // being recorded (--pixel) it becomes a node, with the nearest shape that blocks it.
-static void LogShadowRay(const Shading *sh, const RayHit *hit, const Light *light, bool visible) {
+static void LogShadowRay(const ShadeContext *sh, const RayHit *hit, const Light *light, bool visible) {
     const Methods *methods = &sh->settings->methods;
     sh->log->stats.shadow++;
     if (sh->settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads it
@@ -64,14 +64,14 @@ static void LogShadowRay(const Shading *sh, const RayHit *hit, const Light *ligh
     SelfHit from;
     if (sh->log->tree && ShadowRay(sh->scene, hit, light->position, methods, &shadow, &from)) {
         RayNode *n = &(*sh->log->tree)[RecordRay(RAY_SHADOW, &shadow, sh->log)];
-        n->hit = FindNearestHitFrom(sh->scene, *methods, &shadow, &from, 1, &n->record);
+        n->found = FindNearestHitFrom(sh->scene, *methods, &shadow, &from, 1, &n->record);
         n->light = visible ? light->intensity : color{0, 0, 0};
     }
 }
 
 // Whether the light shines on the hit: the assignment's hard shadow (LightVisible, geometry.cpp),
 // one shadow ray. Without shapes that could block (Effects), no ray is needed.
-[[maybe_unused]] static bool LightIsVisible(const Shading *sh, const RayHit *hit,
+[[maybe_unused]] static bool LightIsVisible(const ShadeContext *sh, const RayHit *hit,
                                             const Light *light) {
     if (!sh->settings->effects.shadows) // (no shape could stand in the way)
         return true;
@@ -85,7 +85,7 @@ static void LogShadowRay(const Shading *sh, const RayHit *hit, const Light *ligh
 // (N.L <= 0) contributes nothing and costs no shadow ray (second handout). N is the surface's
 // normal; on a smooth mesh, the one interpolated from its corners (SurfaceNormal), and a light
 // behind the flat triangle is then seen or not as its shadow ray finds (LightVisible).
-static color FloorColor(const Shading *sh, const Surface *s) {
+static color FloorColor(const ShadeContext *sh, const Surface *s) {
     // starter: begin floor
     const RayHit *hit = s->hit;
     real a = sh->scene->ambient; // handout: kd * max(ambient, N.L)
@@ -111,7 +111,7 @@ static color FloorColor(const Shading *sh, const Surface *s) {
 // R = -L + 2 (N.L) N the light's mirror direction, V toward the viewer, all unit vectors.
 // The N.L > 0 gate keeps a light below the horizon from making a highlight; max(0, R.V) before
 // pow keeps a fractional n from meeting a negative base (a NaN). N as in FloorColor.
-static color PhongColor(const Shading *sh, const Surface *s) {
+static color PhongColor(const ShadeContext *sh, const Surface *s) {
     // starter: begin phong
     const Material *m = s->m;
     color result = sh->scene->ambient * m->ambient;
@@ -220,7 +220,7 @@ real SchlickReflectance(real cosI, real eta) {
 // Sends the next ray of the chain from the hit point in direction dir, if it is allowed: its
 // number must not pass `depth`, and its colour, counted with `share` (the mirror fraction or
 // the Fresnel weight), must be able to change the pixel (kMinRayWeight). Otherwise black.
-static color FollowRay(const Shading *sh, const Surface *s, RayKind kind, vec3 dir, real share) {
+static color FollowRay(const ShadeContext *sh, const Surface *s, RayKind kind, vec3 dir, real share) {
     RayChain next = {s->chain.number + 1, s->chain.weight * share};
     // starter: begin depth
     if (next.number > sh->settings->depth) // the assignment: at most `depth` rays in a chain
@@ -237,7 +237,7 @@ static color FollowRay(const Shading *sh, const Surface *s, RayKind kind, vec3 d
 // Clear glass: Fresnel's share R of the reflected ray plus 1 - R of the refracted one. Entering
 // (the ray arrives on the outward side) eta = 1 / ior, leaving eta = ior; under total internal
 // reflection R = 1 and no refracted ray is cast.
-static color GlassColor(const Shading *sh, const Surface *s) {
+static color GlassColor(const ShadeContext *sh, const Surface *s) {
     vec3 d = SafeNormalize(s->ray->dir), n = s->hit->normal;
     real eta = s->hit->frontFace ? 1 / s->m->ior : s->m->ior;
     real reflectance = sh->settings->methods.fresnel == FRESNEL_SCHLICK
@@ -252,7 +252,7 @@ static color GlassColor(const Shading *sh, const Surface *s) {
 }
 
 // The surface's own colour: glass, or lit by the scene's lighting rule.
-static color SurfaceColor(const Shading *sh, const Surface *s) {
+static color SurfaceColor(const ShadeContext *sh, const Surface *s) {
     if (s->m->ior > 0)
         return GlassColor(sh, s);
     if (sh->scene->shading == SHADING_PHONG)
@@ -265,24 +265,24 @@ static color SurfaceColor(const Shading *sh, const Surface *s) {
 // sphere, another for each ray that meets it, so for each sample of the pixel (FuzzyMirror,
 // blur.cpp): the pixel's samples average the spread reflection. One that points into the surface
 // is absorbed, as the book's metal absorbs it, and brings back black.
-static color MirrorColor(const Shading *sh, const Surface *s, real k) {
+static color MirrorColor(const ShadeContext *sh, const Surface *s, real K) {
     vec3 dir = Reflect(s->ray->dir, s->hit->normal);
     if (s->m->fuzz > 0 &&
         !FuzzyMirror(s->m->fuzz, s->ray, s->hit->normal, sh->settings->path.seed, &dir))
         return {0, 0, 0};
-    return s->m->tint * FollowRay(sh, s, RAY_REFLECTION, dir, k);
+    return s->m->tint * FollowRay(sh, s, RAY_REFLECTION, dir, K);
 }
 
 // Mixes the surface's colour with the mirror image: (1 - K) own + K reflected for `mirror K`.
 // A perfect mirror (K = 1) never shows its own colour, so it casts no shadow rays; a chain that
 // has used up `depth` rays ends in black (FollowRay).
-static color ShadeHit(const Shading *sh, const Surface *s) {
-    real k = s->m->mirror;
+static color ShadeHit(const ShadeContext *sh, const Surface *s) {
+    real K = s->m->mirror;
     color result = {0, 0, 0};
-    if (k < 1)
-        result = (1 - k) * SurfaceColor(sh, s);
-    if (k > 0)
-        result = result + k * MirrorColor(sh, s, k);
+    if (K < 1)
+        result = (1 - K) * SurfaceColor(sh, s);
+    if (K > 0)
+        result = result + K * MirrorColor(sh, s, K);
     return result;
 }
 
@@ -305,7 +305,7 @@ color ShadeFound(const Scene *scene, const RenderSettings *settings, RayKind kin
     if (found) {
         int parent = log->current;
         log->current = node;
-        Shading sh = {scene, settings, log};
+        ShadeContext sh = {scene, settings, log};
         Surface surface = {ray, hit, &scene->materials[hit->material], chain};
         result = ShadeHit(&sh, &surface);
         log->current = parent;
@@ -353,22 +353,22 @@ static bool MaterialIsUsed(const Scene *scene, int material) {
     return false;
 }
 
-// A triangle's (b - a) x (c - a) with both edges first multiplied by 2^*k, the power of two
-// that brings the larger edge's largest component into [1, 2): unscaled, the product of two
+// A triangle's (b - a) x (c - a) with both edges first multiplied by 2^*exponent, the power of
+// two that brings the larger edge's largest component into [1, 2): unscaled, the product of two
 // edges of 1e200 (or 1e-200) would overflow (or underflow); scaled, its direction is exact and
-// its length is 2^2k times the true one.
-static vec3 ScaledEdgeCross(const Triangle *t, int *k) {
+// its length is 2^(2 exponent) times the true one.
+static vec3 ScaledEdgeCross(const Triangle *t, int *exponent) {
     vec3 e1 = t->b - t->a, e2 = t->c - t->a;
-    *k = UnitExponent(MaxComponent(e1) > MaxComponent(e2) ? e1 : e2);
-    return Cross(ScaleByPowerOfTwo(e1, *k), ScaleByPowerOfTwo(e2, *k));
+    *exponent = UnitExponent(MaxComponent(e1) > MaxComponent(e2) ? e1 : e2);
+    return Cross(ScaleByPowerOfTwo(e1, *exponent), ScaleByPowerOfTwo(e2, *exponent));
 }
 
 real EmitterSqrtArea(const Scene *scene, const Emitter *e) {
     if (e->shape == SHAPE_SPHERE) // area 4 pi r^2
         return std::sqrt(4 * kPi) * scene->spheres[e->index].radius;
-    int k; // area |e1 x e2| / 2, from the scaled cross product: 2^-2k |n| / 2
-    vec3 n = ScaledEdgeCross(&scene->triangles[e->index], &k);
-    return ScaleByPowerOfTwo(std::sqrt(real(0.5) * SafeLength(n)), -k);
+    int exponent; // area |e1 x e2| / 2, from the scaled cross product: 2^(-2 exponent) |n| / 2
+    vec3 n = ScaledEdgeCross(&scene->triangles[e->index], &exponent);
+    return ScaleByPowerOfTwo(std::sqrt(real(0.5) * SafeLength(n)), -exponent);
 }
 
 // An emitting shape, with what every light sample reads: its area's square root, (a triangle) its
@@ -381,8 +381,8 @@ static Emitter MakeEmitter(const Scene *scene, ShapeKind shape, int index) {
         return e;
     }
     const Triangle *t = &scene->triangles[index];
-    int k; // (the scale is not needed: only the direction)
-    e.normal = SafeNormalize(ScaledEdgeCross(t, &k));
+    int exponent; // (the scale is not needed: only the direction)
+    e.normal = SafeNormalize(ScaledEdgeCross(t, &exponent));
     e.emit = scene->materials[t->material].emit;
     return e;
 }

@@ -19,8 +19,9 @@
 // [0, 1]; a triangle with no area gives each corner a third.
 void Barycentric(const Triangle *t, vec3 p, real w[3]) {
     vec3 e1 = t->b - t->a, e2 = t->c - t->a, q = p - t->a;
-    int k = UnitExponent({MaxComponent(e1), MaxComponent(e2), 0});
-    e1 = ScaleByPowerOfTwo(e1, k), e2 = ScaleByPowerOfTwo(e2, k), q = ScaleByPowerOfTwo(q, k);
+    int exponent = UnitExponent({MaxComponent(e1), MaxComponent(e2), 0});
+    e1 = ScaleByPowerOfTwo(e1, exponent), e2 = ScaleByPowerOfTwo(e2, exponent),
+    q = ScaleByPowerOfTwo(q, exponent);
     vec3 n = Cross(e1, e2);
     real nn = Dot(n, n);
     if (!(nn > 0) || !std::isfinite(nn)) {

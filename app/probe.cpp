@@ -149,7 +149,7 @@ static std::string NodeJson(const Scene *scene, const std::vector<RayNode> &tree
             children += (children.empty() ? "" : ",") + NodeJson(scene, tree, k);
     return std::string("{\"kind\":\"") + kKinds[n.kind] + "\",\"origin\":" + Triple(n.ray.origin) +
            ",\"dir\":" + Triple(n.ray.dir) +
-           ",\"hit\":" + (n.hit ? HitJson(scene, &n.record) : "null") +
+           ",\"hit\":" + (n.found ? HitJson(scene, &n.record) : "null") +
            ",\"color\":" + Triple(n.light) + ",\"children\":[" + children + "]}";
 }
 

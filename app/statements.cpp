@@ -314,7 +314,7 @@ static bool ReadLens(const Statement *st, Camera *c, std::string *error) {
     }
     if (angle >= 0 && aperture >= 0)
         return Fail(st, "camera lookat: give the lens as defocus or as aperture, not both", error);
-    c->focusDistance = focus > 0 ? focus : SafeLength(c->to - c->from);
+    c->focusDistance = focus > 0 ? focus : SafeLength(c->lookAt - c->lookFrom);
     c->lensRadius = aperture >= 0 ? aperture / 2
                     : angle > 0   ? c->focusDistance * std::tan(angle * real(M_PI / 360))
                                   : 0;
@@ -352,9 +352,9 @@ bool ReadCamera(const Statement *st, Scene *scene, std::string *error) {
         if (!Numbers(st, 2, 10, lens ? st->tokens.size() : 12, v, error))
             return false;
         c.kind = CAMERA_LOOKAT;
-        c.from = {v[0], v[1], v[2]};
-        c.to = {v[3], v[4], v[5]};
-        c.up = {v[6], v[7], v[8]};
+        c.lookFrom = {v[0], v[1], v[2]};
+        c.lookAt = {v[3], v[4], v[5]};
+        c.vup = {v[6], v[7], v[8]};
         c.fovDegrees = v[9];
         Camera check;
         std::string why;

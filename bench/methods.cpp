@@ -115,17 +115,17 @@ static void Classify(const Scene *scene, Methods methods, int i, int j, Kinds *k
     std::vector<RayNode> b = CentreTree(scene, methods, i, j);
     for (size_t k = 0; k < a.size() && k < b.size() && a[k].kind == b[k].kind; k++) {
         const RayNode &x = a[k], &y = b[k];
-        if (x.kind == RAY_SHADOW && x.hit != y.hit) {
-            (y.hit ? kinds->acne : kinds->lostShadows)++;
+        if (x.kind == RAY_SHADOW && x.found != y.found) {
+            (y.found ? kinds->acne : kinds->lostShadows)++;
             return;
         }
         if (x.kind == RAY_SHADOW ||
-            (x.hit == y.hit &&
-             (!x.hit || (x.record.shape == y.record.shape && x.record.index == y.record.index))))
+            (x.found == y.found &&
+             (!x.found || (x.record.shape == y.record.shape && x.record.index == y.record.index))))
             continue;
         vec3 gap = x.record.point - y.record.point;
-        bool samePoint =
-            x.hit && y.hit && SafeLength(gap) <= real(1e-6) * (SafeLength(x.record.point) + 1e-30);
+        bool samePoint = x.found && y.found &&
+                         SafeLength(gap) <= real(1e-6) * (SafeLength(x.record.point) + 1e-30);
         (samePoint ? kinds->ties : kinds->wrongSurface)++;
         return;
     }

@@ -71,8 +71,8 @@ void SetWideChildBox(WideNode *node, int k, const Box *box, int exponent) {
 // One wide block: the triangles at places index[0..n), lane by lane, in float (times 2^exponent
 // in the double build; as they are in the float build, whose block test is the exact one);
 // empty lanes repeat lane 0's corners with index -1, and are passed over by their index.
-void FillWideBlock(const std::vector<Triangle> &triangles, const int *index, int n,
-                          int exponent, WideBlock *block) {
+void FillWideBlock(const std::vector<Triangle> &triangles, const int *index, int n, int exponent,
+                   WideBlock *block) {
     double p1, p2;
     PowerFactors(exponent, &p1, &p2);
     for (int lane = 0; lane < kWide; lane++) {

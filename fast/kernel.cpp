@@ -37,7 +37,7 @@
 // The wide tree's search (kernel_wide.h) for a ray whose exact search is w->exact.
 template <int kz>
 static RT_INLINE bool HitWide(const SceneLayout *layout, WideSearch *w, RayHit *hit) {
-    const Search *s = &w->exact;
+    const TriangleSearch *s = &w->exact;
     PowerPair scale = PowerOfTwoPair(layout->wideExponent);
     Double4 o;
     double omax = ScaledOrigin(s->ray, scale, &o);
@@ -58,7 +58,7 @@ static RT_INLINE bool HitSheared(const Scene *scene, const SceneLayout *layout, 
     RayShear shear;
     ShearRayAxes<kz>(ray, &shear);
     WideSearch w; // (its exact part is all a list needs)
-    Search &s = w.exact;
+    TriangleSearch &s = w.exact;
     s.triangles = scene->triangles.data(), s.setUps = layout->setUps.data();
     s.ray = ray, s.shear = &shear, s.skip = skip, s.tMin = tMin, s.tMax = tMax, s.best = -1;
     s.anyHit = anyHit, s.originPad = OriginPad(ray);
@@ -199,8 +199,8 @@ bool HitCommittedPacket(const Scene *scene, const SceneLayout *layout, const Ray
                         RayHit *hits, bool *found) {
 #if RT_DISPATCH
     int count = packet->count;
-    if (!layout->vectors || !layout->wideNodes.empty() || !layout->sphereNodes.empty() || count < 1 ||
-        count > kLanes || packet->kz < 0 || packet->kz > 2)
+    if (!layout->vectors || !layout->wideNodes.empty() || !layout->sphereNodes.empty() ||
+        count < 1 || count > kLanes || packet->kz < 0 || packet->kz > 2)
         return false;
     PacketSearch p;
     p.packet = packet, p.active = (1u << count) - 1, p.hits = hits;
@@ -289,7 +289,8 @@ bool SearchLayout(const Accelerator *self, const Scene *scene, Methods methods, 
 // one ray's search with more bookkeeping.
 const size_t kPacketShapes = 64;
 static bool PacketPays(const SceneLayout *layout, int count) {
-    return count >= 2 && layout->vectors && layout->wideNodes.empty() && layout->sphereNodes.empty() &&
+    return count >= 2 && layout->vectors && layout->wideNodes.empty() &&
+           layout->sphereNodes.empty() &&
            layout->triangleCount + layout->sphereCount <= kPacketShapes;
 }
 

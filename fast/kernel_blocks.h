@@ -143,7 +143,7 @@ static RT_INLINE unsigned SurvivorsOneByOne(const TriangleBlock *b, const RayShe
 }
 
 // The search so far: the ray, its interval, the nearest hit and its triangle's place.
-struct Search {
+struct TriangleSearch {
     const Triangle *triangles;
     const TriangleSetUp *setUps; // the triangles' boxes and planes (SceneLayout)
     const Ray *ray;
@@ -182,7 +182,7 @@ static RT_INLINE void Inverses(vec3 d, real inverse[3]) {
 // there, and a NaN (o exactly on the widened face) refuses nothing. A 1/d that overflows from a
 // tiny d moves the line far less along that axis than the pad, since ScaleRay keeps the largest |d|
 // near 1.
-static RT_INLINE bool OutOfReach(const Box *box, int axis, const Search *s, real limit) {
+static RT_INLINE bool OutOfReach(const Box *box, int axis, const TriangleSearch *s, real limit) {
     real pad = kBoxAllowance * box->size + s->originPad, first, last;
     SlabEnds(box->lo[axis], box->hi[axis], pad, Component(s->ray->origin, axis), s->inverse[axis],
              std::signbit(s->inverse[axis]), &first, &last);
@@ -195,8 +195,8 @@ static RT_INLINE bool OutOfReach(const Box *box, int axis, const Search *s, real
 // is tested against is one step above). `sure`: its three edge functions are known to be of one
 // sign and none 0, so what IntersectSheared does next is RobustPlaneHit, called here with the
 // same arguments. True if hit (the search's nearest then).
-static RT_INLINE bool TestSurvivor(Search *s, int index, const TriangleSetUp *setUp, bool sure,
-                                   RayHit *hit) {
+static RT_INLINE bool TestSurvivor(TriangleSearch *s, int index, const TriangleSetUp *setUp,
+                                   bool sure, RayHit *hit) {
     real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;
     const Triangle *tri = &s->triangles[index];
     if (OutOfReach(&setUp->box, setUp->flat, s, limit))
@@ -211,8 +211,8 @@ static RT_INLINE bool TestSurvivor(Search *s, int index, const TriangleSetUp *se
 
 // The full test for the survivors of blocks [first, first + count). True if anything was hit.
 template <int kz, bool kVectors>
-static RT_INLINE bool TestBlocks(const TriangleBlock *blocks, int first, int count, Search *s,
-                                 RayHit *hit) {
+static RT_INLINE bool TestBlocks(const TriangleBlock *blocks, int first, int count,
+                                 TriangleSearch *s, RayHit *hit) {
     bool found = false;
     for (const TriangleBlock *b = blocks + first; b < blocks + first + count; b++) {
         unsigned sure;

@@ -189,7 +189,7 @@ static RT_INLINE void OrderChildren(const WideNode *n, unsigned open, const Wide
 // The search of the wide tree: the exact search's state (kernel_blocks.h), the ray for the
 // nodes, for the blocks and for tier 1 of the plane's t (kernel_plane.h).
 struct WideSearch {
-    Search exact;
+    TriangleSearch exact;
     WideRay nodes;
     FilterRay filter;
     PlaneRay plane;
@@ -200,7 +200,7 @@ struct WideSearch {
 // functions' signs are sure with RobustPlaneHit's first tier in the kernel (KernelPlaneHit).
 static RT_INLINE bool TestWideSurvivor(WideSearch *w, int index, const TriangleSetUp *setUp,
                                        bool sure, RayHit *hit) {
-    Search *s = &w->exact;
+    TriangleSearch *s = &w->exact;
     real limit = s->best >= 0 && index < s->best ? NextAfter(s->tMax, true) : s->tMax;
     const Triangle *tri = &s->triangles[index];
     if (!w->reach)
@@ -219,9 +219,8 @@ static RT_INLINE bool TestWideSurvivor(WideSearch *w, int index, const TriangleS
 // with the set-up made here (the layout keeps none for the tree: TestSurvivor, kernel_blocks.h).
 // After a hit the nodes' tMax follows the exact one (rounded up). True if anything was hit.
 template <int kz>
-static RT_INLINE bool TestWideLeaf(const WideBlock *blocks, int code, WideSearch *w,
-                                   RayHit *hit) {
-    Search *s = &w->exact;
+static RT_INLINE bool TestWideLeaf(const WideBlock *blocks, int code, WideSearch *w, RayHit *hit) {
+    TriangleSearch *s = &w->exact;
     bool found = false;
     const WideBlock *b = blocks + LeafFirst(code), *end = b + LeafCount(code);
     for (; b < end; b++) {

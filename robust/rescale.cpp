@@ -5,7 +5,7 @@
 // such a direction by a power of two that brings its largest component into [1, 2), which is
 // exact, searches along it, and multiplies the t it finds back. Every t' in the scaled interval
 // comes back inside the caller's (tMin, tMax), so no shape found there is refused on the way back.
-// ScaleRay, ScaledRay and ScaleBack are in ray.h: every search takes this step first; this file
+// ScaleRay, ScaledRay and ScaleBack are in robust.h: every search takes this step first; this file
 // holds the rare part, for a direction outside the window.
 #include "robust.h"
 
@@ -42,8 +42,8 @@ static void ScaledInterval(real tMin, real tMax, int k, real *lo, real *hi) {
 }
 
 bool RescaleRay(const Ray *ray, ScaledRay *s) {
-    s->k = UnitExponent(ray->dir);
-    s->ray = {ray->origin, ScaleByPowerOfTwo(ray->dir, s->k)};
-    ScaledInterval(s->tMin, s->tMax, s->k, &s->tMin, &s->tMax);
+    s->exponent = UnitExponent(ray->dir);
+    s->ray = {ray->origin, ScaleByPowerOfTwo(ray->dir, s->exponent)};
+    ScaledInterval(s->tMin, s->tMax, s->exponent, &s->tMin, &s->tMax);
     return MaxComponent(s->ray.dir) >= 1 && IsFinite(s->ray.dir);
 }

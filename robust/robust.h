@@ -45,11 +45,12 @@ inline bool SearchedAsIs(vec3 dir) { return WithinWindow(MaxComponent(dir), kDir
 
 // A ray whose direction lies outside kDirectionWindow, rescaled to a largest component in [1, 2),
 // with its interval, so that no shape test squares or divides a direction of 1e-200 or 1e200 out
-// of range. Scaling d by 2^k scales every t by 2^-k exactly; ScaleBack undoes it. k = 0: the
-// direction is inside the window, and the ray is searched as given (`ray` is not set).
+// of range. Scaling d by 2^exponent scales every t by 2^-exponent exactly; ScaleBack undoes it.
+// exponent = 0: the direction is inside the window, and the ray is searched as given (`ray` is
+// not set).
 struct ScaledRay {
     Ray ray;
-    int k;
+    int exponent;
     real tMin, tMax;
 };
 
@@ -61,21 +62,21 @@ bool RescaleRay(const Ray *ray, ScaledRay *s);
 // finite: such a ray has no answer. (Inline: every search starts here, and almost every
 // direction is inside the window.)
 inline bool ScaleRay(const Ray *ray, real tMin, real tMax, ScaledRay *s) {
-    s->k = 0, s->tMin = tMin, s->tMax = tMax;
+    s->exponent = 0, s->tMin = tMin, s->tMax = tMax;
     return SearchedAsIs(ray->dir) || RescaleRay(ray, s);
 }
 
 // The ray a search follows: the rescaled one, or the one given.
 inline const Ray *SearchedRay(const ScaledRay *s, const Ray *given) {
-    return s->k == 0 ? given : &s->ray;
+    return s->exponent == 0 ? given : &s->ray;
 }
 
 // The hit's t in units of the original direction; false if that leaves (tMin, tMax) by
 // overflowing or underflowing.
 inline bool ScaleBack(const ScaledRay *s, real tMin, real tMax, RayHit *hit) {
-    if (s->k == 0)
+    if (s->exponent == 0)
         return true;
-    hit->t = ScaleByPowerOfTwo(hit->t, s->k);
+    hit->t = ScaleByPowerOfTwo(hit->t, s->exponent);
     return hit->t > tMin && hit->t < tMax;
 }
 

@@ -9,8 +9,8 @@ static const size_t kMaxShapesToRender = 64;
 static bool TreeIsFinite(const std::vector<RayNode> &tree, std::string *why) {
     for (const RayNode &n : tree) {
         bool ok = IsFinite(n.ray.origin) && IsFinite(n.ray.dir) && IsFinite(n.light) &&
-                  (!n.hit || (IsFinite(n.record.point) && IsFinite(n.record.normal) &&
-                              std::isfinite(n.record.t)));
+                  (!n.found || (IsFinite(n.record.point) && IsFinite(n.record.normal) &&
+                                std::isfinite(n.record.t)));
         if (!ok) {
             *why = "a ray of kind " + std::to_string(n.kind) + " or its hit is not finite";
             return false;

@@ -184,7 +184,7 @@ Scene LeakScene(bool mirrorWalls, vec3 eye, vec3 view, int size) {
     Material glass = {"glass", {1, 1, 1}, {1, 1, 1}, 0, 1, 0, real(1.5), {0, 0, 0}};
     scene.materials = {wall, glass};
     scene.camera.kind = CAMERA_LOOKAT;
-    scene.camera.from = eye, scene.camera.to = eye + view, scene.camera.up = {0, 1, 0};
+    scene.camera.lookFrom = eye, scene.camera.lookAt = eye + view, scene.camera.vup = {0, 1, 0};
     scene.camera.fovDegrees = 100;
     return scene;
 }

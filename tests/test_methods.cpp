@@ -156,7 +156,7 @@ static void TestSkipCannotSeeGlassFromInside() {
         bool leavesFromInside = false;
         for (const RayNode &n : tree)
             leavesFromInside =
-                leavesFromInside || (n.kind == RAY_REFRACTION && n.hit &&
+                leavesFromInside || (n.kind == RAY_REFRACTION && n.found &&
                                      n.record.shape == SHAPE_SPHERE && !n.record.frontFace);
         CHECK(
             leavesFromInside == (k == 0),

@@ -256,10 +256,10 @@ static void SameRenderScenes(Scene scenes[3]) {
 }
 
 // A pixel's colour as one sample at a time gives it (the grid's positions, SamplePosition), each
-// traced alone (TraceRay; FindNearestHit, then TracePath): RenderPixel, which traces them in packets and finds their
-// cells row after row (NextCell), must give these very bits and count the same rays. Sample
-// counts whose grid rows differ in length (3: 1 + 2; 10: 3 + 3 + 4; 17: 4 + 4 + 4 + 5) and a
-// square (9).
+// traced alone (TraceRay; FindNearestHit, then TracePath): RenderPixel, which traces them in
+// packets and finds their cells row after row (NextCell), must give these very bits and count the
+// same rays. Sample counts whose grid rows differ in length (3: 1 + 2; 10: 3 + 3 + 4; 17: 4 + 4 + 4
+// + 5) and a square (9).
 static int PixelsThatDiffer(const Scene *scene, RenderSettings settings, int samples) {
     int size = 8, differ = 0;
     settings.width = settings.height = size;
