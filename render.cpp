@@ -62,6 +62,8 @@ struct GridCell {
 };
 static GridCell FindCell(int s, int n) {
     assert(n >= 1 && n <= 65536 && s >= 0 && s < n);
+    if (n == 1) // (one sample a pixel: its one cell is the pixel, found without a square root)
+        return {1, 0, 0, 1};
     int rows = (int)std::sqrt((double)n);
     while ((rows + 1) * (rows + 1) <= n) // guard sqrt rounding for large perfect squares
         rows++;
@@ -136,19 +138,6 @@ static color SampleColor(const Scene *scene, const RenderSettings *settings, vec
     GetCameraRay(&settings->camera, settings->width, settings->height, position, &ray);
     TraceEyeRays(scene, settings, &ray, 1, i, j, s, log, &c);
     return c;
-}
-
-// Samples first .. first + count - 1 of pixel (i, j) (count at most kEyeRaysTogether) at
-// `positions`, added to *sum in turn: their camera rays traced together (TraceEyeRays).
-static void AddSamples(const Scene *scene, const RenderSettings *settings, const vec2 *positions,
-                       int i, int j, int first, int count, TraceLog *log, color *sum) {
-    Ray rays[kEyeRaysTogether];
-    color colours[kEyeRaysTogether];
-    for (int k = 0; k < count; k++)
-        GetCameraRay(&settings->camera, settings->width, settings->height, positions[k], &rays[k]);
-    TraceEyeRays(scene, settings, rays, count, i, j, first, log, colours);
-    for (int k = 0; k < count; k++)
-        *sum = *sum + colours[k];
 }
 
 // Whether samples differ, in any channel clamped to [0, 1], by more than kAdaptiveContrast.
@@ -261,15 +250,19 @@ color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int
     } else { // n samples, a few at a time; one sample is the pixel's centre (the handout's ray)
         bool jitter = settings->sampling != SAMPLES_GRID && n > 1;
         GridCell cell = FindCell(0, n);
-        for (int first = 0; first < n; first += kEyeRaysTogether) {
+        for (int first = 0; first < n; first += kEyeRaysTogether) { // their rays together
             int count = std::min(kEyeRaysTogether, n - first);
-            vec2 p[kEyeRaysTogether];
+            Ray rays[kEyeRaysTogether];
+            color colours[kEyeRaysTogether];
             for (int s = first; s < first + count; s++) {
                 cell = NextCell(&cell, s, n);
-                p[s - first] =
-                    jitter ? JitterPosition(i, j, &cell, s, 0) : GridPosition(i, j, &cell, s);
+                vec2 p = jitter ? JitterPosition(i, j, &cell, s, 0) : GridPosition(i, j, &cell, s);
+                GetCameraRay(&settings->camera, settings->width, settings->height, p,
+                             &rays[s - first]);
             }
-            AddSamples(scene, settings, p, i, j, first, count, &log, &result);
+            TraceEyeRays(scene, settings, rays, count, i, j, first, &log, colours);
+            for (int k = 0; k < count; k++)
+                result = result + colours[k];
         }
         result = (real(1) / n) * result;
     }

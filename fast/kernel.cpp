@@ -325,7 +325,8 @@ void SearchEyeRays(const Accelerator *self, const Scene *scene, Methods methods,
 void AnswerEyeRays(const Accelerator *self, const Scene *scene, Methods methods, const Ray *rays,
                    int count, RayHit *hits, bool *found) {
     bool answered[kEyeRaysTogether] = {};
-    SearchEyeRays(self, scene, methods, rays, count, hits, found, answered);
+    if (count >= 2) // (a packet of one ray is that ray's search with more bookkeeping)
+        SearchEyeRays(self, scene, methods, rays, count, hits, found, answered);
     for (int k = 0; k < count; k++)
         if (!answered[k])
             found[k] = SearchLayout(self, scene, methods, &rays[k], &kNoSelfHit, kInfinity, false,
