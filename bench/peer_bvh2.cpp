@@ -47,12 +47,13 @@ static bool Trace(const Structure &s, const float o[3], const float d[3], double
     bvh::v2::Ray<float, 3> ray(Vec3(o[0], o[1], o[2]), Vec3(d[0], d[1], d[2]), 0, 1e30f);
     bvh::v2::SmallStack<Bvh::Index, 64> stack;
     bool hit = false;
-    s.bvh.intersect<false, false>(ray, s.bvh.get_root().index, stack, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; i++)
-            if (auto found = s.tris[i].intersect(ray))
-                ray.tmax = std::get<0>(*found), hit = true;
-        return hit;
-    });
+    s.bvh.intersect<false, false>(ray, s.bvh.get_root().index, stack,
+                                  [&](size_t begin, size_t end) {
+                                      for (size_t i = begin; i < end; i++)
+                                          if (auto found = s.tris[i].intersect(ray))
+                                              ray.tmax = std::get<0>(*found), hit = true;
+                                      return hit;
+                                  });
     *t = ray.tmax;
     return hit;
 }
@@ -69,31 +70,13 @@ int main(int argc, char **argv) {
     Build(v, f, &s);
     double buildMs = peers::Ms(start);
     if (mode == 1) {
-        for (const peers::CrackSet &set : peers::CrackSets(v, f)) {
-            long cracks = 0;
-            for (const peers::CrackRay &r : set.rays) {
-                double t;
-                bool hit = Trace(s, r.o, r.d, &t);
-                cracks += peers::Crack(set, hit, t);
-            }
-            printf("%s\t%zu\t%ld\n", set.name, set.rays.size(), cracks);
-        }
+        peers::PrintCracks(
+            v, f, [&](const float *o, const float *d, double *t) { return Trace(s, o, d, t); });
         return 0;
     }
     printf("%.3f\n", buildMs);
-    long hits = 0;
-    for (int r = 0; r < rounds; r++) {
-        start = std::chrono::steady_clock::now();
-        hits = 0;
-        for (int j = 0; j < peers::kSize; j++)
-            for (int i = 0; i < peers::kSize; i++) {
-                float o[3], d[3];
-                double t;
-                peers::EyeRay(i, j, o, d);
-                hits += Trace(s, o, d, &t);
-            }
-        printf("%.3f\n", peers::Ms(start));
-    }
+    long hits = peers::TimeEyeRays(
+        rounds, [&](const float *o, const float *d, double *t) { return Trace(s, o, d, t); });
     size_t bytes = s.bvh.nodes.size() * sizeof(Node) + s.bvh.prim_ids.size() * sizeof(size_t) +
                    s.tris.size() * sizeof(PrecomputedTri);
     printf("hits %ld\nbytes %zu\n", hits, bytes);

@@ -2,8 +2,8 @@
 // prints), where it is installed (Debian's libembree-dev; bench/peers.sh builds this as
 // build/peer_embree). One thread, its default build quality and ISA, rtcIntersect1; its robust
 // mode (RTC_SCENE_FLAG_ROBUST) as a second column of the crack table (`cracks-robust`). Its
-// bytes are what it allocates, counted by its own memory monitor (rtcSetDeviceMemoryMonitorFunction):
-// the vertex and index buffers it was given, and the BVH.
+// bytes are what it allocates, counted by its own memory monitor
+// (rtcSetDeviceMemoryMonitorFunction): the vertex and index buffers it was given, and the BVH.
 #include "peers.h"
 
 #include <embree3/rtcore.h>
@@ -17,18 +17,16 @@ static bool Monitor(void *, ssize_t bytes, bool) {
     return true;
 }
 
-static RTCScene Build(RTCDevice device, const std::vector<float> &v,
-                      const std::vector<unsigned> &f, bool robust) {
+static RTCScene Build(RTCDevice device, const std::vector<float> &v, const std::vector<unsigned> &f,
+                      bool robust) {
     RTCScene scene = rtcNewScene(device);
     if (robust)
         rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
     RTCGeometry mesh = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    float *vertices = (float *)rtcSetNewGeometryBuffer(mesh, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                       RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                       v.size() / 3);
-    unsigned *faces = (unsigned *)rtcSetNewGeometryBuffer(mesh, RTC_BUFFER_TYPE_INDEX, 0,
-                                                          RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-                                                          f.size() / 3);
+    float *vertices = (float *)rtcSetNewGeometryBuffer(
+        mesh, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), v.size() / 3);
+    unsigned *faces = (unsigned *)rtcSetNewGeometryBuffer(
+        mesh, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), f.size() / 3);
     memcpy(vertices, v.data(), v.size() * sizeof(float));
     memcpy(faces, f.data(), f.size() * sizeof(unsigned));
     rtcCommitGeometry(mesh);
@@ -57,19 +55,8 @@ static void Time(RTCDevice device, const std::vector<float> &v, const std::vecto
     auto start = std::chrono::steady_clock::now();
     RTCScene scene = Build(device, v, f, false);
     printf("%.3f\n", peers::Ms(start));
-    long hits = 0;
-    for (int r = 0; r < rounds; r++) {
-        start = std::chrono::steady_clock::now();
-        hits = 0;
-        for (int j = 0; j < peers::kSize; j++)
-            for (int i = 0; i < peers::kSize; i++) {
-                float o[3], d[3];
-                double t;
-                peers::EyeRay(i, j, o, d);
-                hits += Trace(scene, o, d, &t);
-            }
-        printf("%.3f\n", peers::Ms(start));
-    }
+    long hits = peers::TimeEyeRays(
+        rounds, [&](const float *o, const float *d, double *t) { return Trace(scene, o, d, t); });
     printf("hits %ld\nbytes %lld\n", hits, (long long)gBytes);
     rtcReleaseScene(scene);
 }
@@ -77,15 +64,8 @@ static void Time(RTCDevice device, const std::vector<float> &v, const std::vecto
 static void Cracks(RTCDevice device, const std::vector<float> &v, const std::vector<unsigned> &f,
                    bool robust) {
     RTCScene scene = Build(device, v, f, robust);
-    for (const peers::CrackSet &set : peers::CrackSets(v, f)) {
-        long cracks = 0;
-        for (const peers::CrackRay &r : set.rays) {
-            double t;
-            bool hit = Trace(scene, r.o, r.d, &t);
-            cracks += peers::Crack(set, hit, t);
-        }
-        printf("%s\t%zu\t%ld\n", set.name, set.rays.size(), cracks);
-    }
+    peers::PrintCracks(
+        v, f, [&](const float *o, const float *d, double *t) { return Trace(scene, o, d, t); });
     rtcReleaseScene(scene);
 }
 

@@ -31,19 +31,8 @@ static void Time(const std::vector<float> &v, const std::vector<unsigned> &f, in
     SceneLayout layout;
     CommitScene(&scene, LAYOUT_AUTO, 1, &layout);
     printf("%.3f\n", peers::Ms(start));
-    long hits = 0;
-    for (int r = 0; r < rounds; r++) {
-        start = std::chrono::steady_clock::now();
-        hits = 0;
-        for (int j = 0; j < peers::kSize; j++)
-            for (int i = 0; i < peers::kSize; i++) {
-                float o[3], d[3];
-                double t;
-                peers::EyeRay(i, j, o, d);
-                hits += Trace(&scene, o, d, &t);
-            }
-        printf("%.3f\n", peers::Ms(start));
-    }
+    long hits = peers::TimeEyeRays(
+        rounds, [&](const float *o, const float *d, double *t) { return Trace(&scene, o, d, t); });
     printf("hits %ld\nbytes %zu\n", hits, LayoutBytes(&layout));
 }
 
@@ -52,15 +41,8 @@ static void Cracks(const std::vector<float> &v, const std::vector<unsigned> &f) 
     MakeScene(v, f, &scene);
     SceneLayout layout;
     CommitScene(&scene, LAYOUT_AUTO, 1, &layout);
-    for (const peers::CrackSet &set : peers::CrackSets(v, f)) {
-        long cracks = 0;
-        for (const peers::CrackRay &r : set.rays) {
-            double t;
-            bool hit = Trace(&scene, r.o, r.d, &t);
-            cracks += peers::Crack(set, hit, t);
-        }
-        printf("%s\t%zu\t%ld\n", set.name, set.rays.size(), cracks);
-    }
+    peers::PrintCracks(
+        v, f, [&](const float *o, const float *d, double *t) { return Trace(&scene, o, d, t); });
 }
 
 int main(int argc, char **argv) {

@@ -54,31 +54,13 @@ int main(int argc, char **argv) {
     bvh.Build(corners.data(), (uint32_t)(f.size() / 3));
     double buildMs = peers::Ms(start);
     if (mode == 1) {
-        for (const peers::CrackSet &set : peers::CrackSets(v, f)) {
-            long cracks = 0;
-            for (const peers::CrackRay &r : set.rays) {
-                double t;
-                bool hit = Trace(bvh, r.o, r.d, &t);
-                cracks += peers::Crack(set, hit, t);
-            }
-            printf("%s\t%zu\t%ld\n", set.name, set.rays.size(), cracks);
-        }
+        peers::PrintCracks(
+            v, f, [&](const float *o, const float *d, double *t) { return Trace(bvh, o, d, t); });
         return 0;
     }
     printf("%.3f\n", buildMs);
-    long hits = 0;
-    for (int r = 0; r < rounds; r++) {
-        start = std::chrono::steady_clock::now();
-        hits = 0;
-        for (int j = 0; j < peers::kSize; j++)
-            for (int i = 0; i < peers::kSize; i++) {
-                float o[3], d[3];
-                double t;
-                peers::EyeRay(i, j, o, d);
-                hits += Trace(bvh, o, d, &t);
-            }
-        printf("%.3f\n", peers::Ms(start));
-    }
+    long hits = peers::TimeEyeRays(
+        rounds, [&](const float *o, const float *d, double *t) { return Trace(bvh, o, d, t); });
     printf("hits %ld\nbytes %zu\n", hits, Bytes(bvh));
     return 0;
 }

@@ -72,7 +72,8 @@ struct CrackSet {
 };
 
 // The four crack sets of the mesh: vertices and edges, from inside and from the eye.
-inline std::vector<CrackSet> CrackSets(const std::vector<float> &v, const std::vector<unsigned> &f) {
+inline std::vector<CrackSet> CrackSets(const std::vector<float> &v,
+                                       const std::vector<unsigned> &f) {
     std::vector<std::pair<unsigned, unsigned>> edges;
     for (size_t t = 0; t < f.size(); t += 3)
         for (int k = 0; k < 3; k++) {
@@ -116,6 +117,40 @@ inline int Mode(int argc, char **argv, const char *name, int *rounds) {
         return 1;
     fprintf(stderr, "usage: %s time MESH.obj ROUNDS | %s cracks MESH.obj\n", name, name);
     return -1;
+}
+
+// Mode 1's lines: each crack set's name, its rays, and those that slipped through, for a program
+// whose trace(o, d, &t) says whether the ray hit and where (inlined, as the call it stands for).
+template <class Trace>
+void PrintCracks(const std::vector<float> &v, const std::vector<unsigned> &f, Trace trace) {
+    for (const CrackSet &set : CrackSets(v, f)) {
+        long cracks = 0;
+        for (const CrackRay &r : set.rays) {
+            double t;
+            bool hit = trace(r.o, r.d, &t);
+            cracks += Crack(set, hit, t);
+        }
+        printf("%s\t%zu\t%ld\n", set.name, set.rays.size(), cracks);
+    }
+}
+
+// Mode 0's rounds: the eye rays traced `rounds` times, each round's ms on a line; the hits of the
+// last round.
+template <class Trace> long TimeEyeRays(int rounds, Trace trace) {
+    long hits = 0;
+    for (int r = 0; r < rounds; r++) {
+        auto start = std::chrono::steady_clock::now();
+        hits = 0;
+        for (int j = 0; j < kSize; j++)
+            for (int i = 0; i < kSize; i++) {
+                float o[3], d[3];
+                double t;
+                EyeRay(i, j, o, d);
+                hits += trace(o, d, &t);
+            }
+        printf("%.3f\n", Ms(start));
+    }
+    return hits;
 }
 
 } // namespace peers
