@@ -61,12 +61,7 @@ static RT_INLINE QuickAnswer QuickTier1(const Triangle *tri, const TriangleSetUp
     double eFirst = GammaD(3) * Dot3(absN, r->absD) + Dot3(e, r->absD);
     if (!setUp->normalKnown || !(eFirst <= kFirstOrderShare * std::fabs(denominator)))
         return PLANE_UNSURE;
-    if (!(t - 2 * error < (double)tMax) || !(t + error > 0) || !(t + 2 * error > (double)tMin))
-        return PLANE_MISS; // beyond or behind
-    if (!(t - error > 0) || error > kPlainRelativeError * std::fabs(t))
-        return PLANE_UNSURE;
-    *plane = {t, error};
-    return (real)t > tMin && (real)t < tMax && t > error ? PLANE_HIT : PLANE_MISS;
+    return DecidePlaneT(t, error, tMin, tMax, plane);
 }
 
 // RobustPlaneHit(tri, setUp, ray, tMin, tMax, hit), its first tier here.

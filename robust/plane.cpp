@@ -319,12 +319,7 @@ static inline QuickAnswer QuickPlaneT(const PlaneProblem *p, const Ray *ray, rea
     Window window = {&p->fixed->box, ray, false, 0, 0};
     if (!WellInside(p, t, &window) || !FirstOrderHolds(p, denominator))
         return PLANE_UNSURE;
-    if (!(t - 2 * error < (double)tMax) || !(t + error > 0) || !(t + 2 * error > (double)tMin))
-        return PLANE_MISS; // beyond or behind
-    if (!(t - error > 0) || error > kPlainRelativeError * std::fabs(t))
-        return PLANE_UNSURE;
-    *plane = {t, error};
-    return (real)t > tMin && (real)t < tMax && t > error ? PLANE_HIT : PLANE_MISS;
+    return DecidePlaneT(t, error, tMin, tMax, plane);
 }
 
 // Everything QuickPlaneT leaves open: FindPlaneT, from the start. (It makes its own

@@ -221,6 +221,19 @@ struct PlaneT {
 // RobustPlaneHit to decide from the start.
 enum QuickAnswer { PLANE_MISS, PLANE_HIT, PLANE_UNSURE };
 
+// Tier 1's last step, for a t whose first-order bound `error` holds: a miss where even twice the
+// bound keeps t beyond tMax, behind the ray or at tMin; unsure where t might be 0 or the bound is
+// wider than kPlainRelativeError of t; else t and its bound into *plane, and a hit when t, rounded
+// to real, lies in (tMin, tMax) clear of its bound. (QuickPlaneT and fast/'s copy of it, alike.)
+inline QuickAnswer DecidePlaneT(double t, double error, real tMin, real tMax, PlaneT *plane) {
+    if (!(t - 2 * error < (double)tMax) || !(t + error > 0) || !(t + 2 * error > (double)tMin))
+        return PLANE_MISS; // beyond or behind
+    if (!(t - error > 0) || error > kPlainRelativeError * std::fabs(t))
+        return PLANE_UNSURE;
+    *plane = {t, error};
+    return (real)t > tMin && (real)t < tMax && t > error ? PLANE_HIT : PLANE_MISS;
+}
+
 // What RobustPlaneHit does where tier 1 alone cannot decide (QuickPlaneT: PLANE_UNSURE): both
 // tiers from the start, t in (tMin, tMax) and its bound into *plane; false if there is none. For
 // fast/, which runs tier 1 itself (and the triangle has area).
