@@ -23,7 +23,6 @@
 // fraction), where the shortcut (int)(v + 0.5) is not: v + 0.5 can round up to the next integer,
 // as it does for the largest float below 0.5, which c * 255 reaches in the float build.
 uint8_t ToByte(real c) {
-    // starter: begin clamp
     if (!(c > 0))
         return 0;
     if (c >= 1)
@@ -31,7 +30,6 @@ uint8_t ToByte(real c) {
     real v = c * 255;
     int whole = (int)v;
     return (uint8_t)(whole + (v - (real)whole >= real(0.5)));
-    // starter: end
 }
 
 // The sRGB transfer curve (IEC 61966-2-1): linear light in [0, 1] to the encoded value a display

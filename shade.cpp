@@ -55,8 +55,7 @@ struct Surface {
 // Whether the light shines on the hit: the assignment's hard shadow (LightVisible, geometry.cpp),
 // counted as one shadow ray. Without shapes that could block (Effects), no ray is needed.
 // Recording a ray tree, the shadow ray is recorded too, with the nearest shape that blocks it.
-[[maybe_unused]] static bool LightIsVisible(const Shading *sh, const RayHit *hit,
-                                            const Light *light) {
+static bool LightIsVisible(const Shading *sh, const RayHit *hit, const Light *light) {
     const Methods *methods = &sh->settings->methods;
     if (!sh->settings->effects.shadows)
         return true;
@@ -80,7 +79,6 @@ struct Surface {
 // normal; on a smooth mesh, the one interpolated from its corners (SurfaceNormal), and a light
 // behind the flat triangle is then seen or not as its shadow ray finds (LightVisible).
 static color FloorColor(const Shading *sh, const Surface *s) {
-    // starter: begin floor
     const RayHit *hit = s->hit;
     real a = sh->scene->ambient; // handout: kd * max(ambient, N.L)
     if (!LightsCanShow(sh->scene, s->m, sh->settings->effects.lightSum))
@@ -97,7 +95,6 @@ static color FloorColor(const Shading *sh, const Surface *s) {
         sum = sum + (nDotL / SafeLength(toLight)) * light.intensity; // handout: N.normalize(L)
     }
     return s->m->diffuse * color{std::max(a, sum.x), std::max(a, sum.y), std::max(a, sum.z)};
-    // starter: end
 }
 
 // The second handout's Phong lighting (`shading phong`):
@@ -106,7 +103,6 @@ static color FloorColor(const Shading *sh, const Surface *s) {
 // The N.L > 0 gate keeps a light below the horizon from making a highlight; max(0, R.V) before
 // pow keeps a fractional n from meeting a negative base (a NaN). N as in FloorColor.
 static color PhongColor(const Shading *sh, const Surface *s) {
-    // starter: begin phong
     const Material *m = s->m;
     color result = sh->scene->ambient * m->ambient;
     vec3 n = SurfaceNormal(sh->scene, s->hit), v = -SafeNormalize(s->ray->dir);
@@ -130,15 +126,10 @@ static color PhongColor(const Shading *sh, const Surface *s) {
         result = result + light.intensity * term;
     }
     return result;
-    // starter: end
 }
 
 // The assignment handout's mirror direction of d about the unit normal n: r = d - 2 (d.n) n.
-vec3 Reflect(vec3 d, vec3 n) {
-    // starter: begin reflect
-    return d - (2 * Dot(d, n)) * n;
-    // starter: end
-}
+vec3 Reflect(vec3 d, vec3 n) { return d - (2 * Dot(d, n)) * n; }
 
 // cos(t), the cosine of the refracted angle, for cos(i) and eta = n1 / n2; false under total
 // internal reflection. Snell's law gives cos^2(t) = 1 - eta^2 (1 - cos^2(i)); written that way it
@@ -169,14 +160,12 @@ static bool RefractedCosine(real cosI, real eta, real *cosT) {
 // Returns false, and leaves *t alone, for total internal reflection (sin(t) >= 1). The cosine is
 // clamped to [0, 1] because d.n of unit vectors can round past 1.
 bool Refract(vec3 d, vec3 n, real eta, vec3 *t) {
-    // starter: begin refraction
     real cosI = std::min(real(1), std::max(real(0), -Dot(d, n)));
     real cosT;
     if (!RefractedCosine(cosI, eta, &cosT))
         return false;
     *t = eta * d + (eta * cosI - cosT) * n; // journal: r_out_perp + r_out_parallel
     return true;
-    // starter: end
 }
 
 // The exact Fresnel reflectance of a clear dielectric for unpolarised light, the average of the
@@ -211,15 +200,19 @@ real SchlickReflectance(real cosI, real eta) {
     return r0 + (1 - r0) * std::pow(1 - cosI, real(5));
 }
 
+// Whether the ray `next` is past the assignment's limit on a chain of rays: at most `depth` of
+// them, the eye's ray the first. FollowRay sends no ray past it: those are black.
+static bool PastDepth(const Shading *sh, RayChain next) {
+    return next.number > sh->settings->depth;
+}
+
 // Sends the next ray of the chain from the hit point in direction dir, if it is allowed: its
 // number must not pass `depth`, and its colour, counted with `share` (the mirror fraction or
 // the Fresnel weight), must be able to change the pixel (kMinRayWeight). Otherwise black.
 static color FollowRay(const Shading *sh, const Surface *s, RayKind kind, vec3 dir, real share) {
     RayChain next = {s->chain.number + 1, s->chain.weight * share};
-    // starter: begin depth
-    if (next.number > sh->settings->depth) // the assignment: at most `depth` rays in a chain
+    if (PastDepth(sh, next)) // the assignment: at most `depth` rays in a chain
         return {0, 0, 0};
-    // starter: end
     if (next.weight < kMinRayWeight)
         return {0, 0, 0};
     Ray ray;
