@@ -12,6 +12,7 @@
 // The screen lies `distance` in front of the eye (at z = eye.z - distance), centred on the line
 // of sight, width p.width, with square pixels of size width / widthPixels; screen x grows to the
 // right and y grows up, while screenCoord.y counts pixel rows down from the top.
+// Checked by TestGetRay (tests/test_handout.cpp).
 void GetRay(Perspective p, vec2 screenCoord, Ray *ray) {
     real pixelSize = p.width / p.widthPixels;
     real x = (screenCoord.x - real(0.5) * p.widthPixels) * pixelSize;

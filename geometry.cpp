@@ -40,6 +40,7 @@ static bool SetHandoutSphereHit(const Sphere *s, const Ray *ray, real t, RayHit 
 // above tMin (the second handout: the least non-negative one), and the point o + t d. It loses a
 // small sphere far away (C swallows r^2) and the near root of a big one (-B + sqrt cancels).
 // SetHandoutSphereHit writes the hit record.
+// Checked by TestSphere (tests/test_handout.cpp).
 bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
     vec3 d = ray->dir, oc = ray->origin - s->center;
     real A = Dot(d, d);
@@ -211,6 +212,7 @@ static bool SetHandoutTriangleHit(const Triangle *tri, const Ray *ray, real t, R
 // Graphics, §4.4.2). Not watertight: each triangle rounds its shared edges differently, so rays
 // through an edge can slip between two triangles (docs/robustness.md). rt's IntersectTriangle
 // (robust/watertight.cpp) is.
+// Checked by TestCramer (tests/test_handout.cpp).
 bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                              RayHit *hit) {
     vec3 a = tri->a, b = tri->b, c = tri->c, e = ray->origin, d = ray->dir;
@@ -249,6 +251,7 @@ bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, rea
 // rounding, from three products instead of nine. Not watertight: p is rounded, and each
 // triangle rounds its shared edge its own way. Its point's error bound is measured: how far
 // o + t d is from the plane, plus its own rounding.
+// Checked by TestPlane (tests/test_handout.cpp).
 bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                             RayHit *hit) {
     vec3 a = tri->a, b = tri->b, c = tri->c;
@@ -295,6 +298,7 @@ static bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray, re
 // names one, is passed over (the second handout's rule, or rt's where the ray plainly goes away
 // from a triangle: StartLeaving). The skip comes before the test, because a test that hits
 // writes *hit.
+// Checked by TestNearestHit (tests/test_handout.cpp).
 static bool HitList(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from,
                     real tMin, real tMax, bool anyHit, RayHit *hit) {
     bool found = false;
@@ -423,6 +427,7 @@ bool ShadowRay(const Scene *scene, const RayHit *hit, vec3 lightPosition, const 
 
 // The handouts' hard shadow: a light is visible from a hit when nothing lies between them, that
 // is, when the shadow ray (t = 1 at the light) meets no shape at t < 1.
+// Checked by TestShadow (tests/test_handout_light.cpp).
 bool LightVisible(const Scene *scene, const Methods *methods, const RayHit *hit,
                   vec3 lightPosition) {
     Ray shadow;

@@ -22,6 +22,7 @@
 // pixel): v - whole is exact (whole is v with its fraction cut off, so the difference is that
 // fraction), where the shortcut (int)(v + 0.5) is not: v + 0.5 can round up to the next integer,
 // as it does for the largest float below 0.5, which c * 255 reaches in the float build.
+// Checked by TestClamp (tests/test_handout_light.cpp).
 uint8_t ToByte(real c) {
     if (!(c > 0))
         return 0;

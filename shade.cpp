@@ -78,6 +78,7 @@ static bool LightIsVisible(const Shading *sh, const RayHit *hit, const Light *li
 // (N.L <= 0) contributes nothing and costs no shadow ray (second handout). N is the surface's
 // normal; on a smooth mesh, the one interpolated from its corners (SurfaceNormal), and a light
 // behind the flat triangle is then seen or not as its shadow ray finds (LightVisible).
+// Checked by TestFloor (tests/test_handout_light.cpp).
 static color FloorColor(const Shading *sh, const Surface *s) {
     const RayHit *hit = s->hit;
     real a = sh->scene->ambient; // handout: kd * max(ambient, N.L)
@@ -102,6 +103,7 @@ static color FloorColor(const Shading *sh, const Surface *s) {
 // R = -L + 2 (N.L) N the light's mirror direction, V toward the viewer, all unit vectors.
 // The N.L > 0 gate keeps a light below the horizon from making a highlight; max(0, R.V) before
 // pow keeps a fractional n from meeting a negative base (a NaN). N as in FloorColor.
+// Checked by TestPhong (tests/test_handout_light.cpp).
 static color PhongColor(const Shading *sh, const Surface *s) {
     const Material *m = s->m;
     color result = sh->scene->ambient * m->ambient;
@@ -129,6 +131,7 @@ static color PhongColor(const Shading *sh, const Surface *s) {
 }
 
 // The assignment handout's mirror direction of d about the unit normal n: r = d - 2 (d.n) n.
+// Checked by TestReflect (tests/test_handout_light.cpp).
 vec3 Reflect(vec3 d, vec3 n) { return d - (2 * Dot(d, n)) * n; }
 
 // cos(t), the cosine of the refracted angle, for cos(i) and eta = n1 / n2; false under total
@@ -159,6 +162,7 @@ static bool RefractedCosine(real cosI, real eta, real *cosT) {
 // |r_out_perp|^2 = eta^2 sin^2(i) = 1 - cos^2(t).
 // Returns false, and leaves *t alone, for total internal reflection (sin(t) >= 1). The cosine is
 // clamped to [0, 1] because d.n of unit vectors can round past 1.
+// Checked by TestRefraction (tests/test_handout_light.cpp).
 bool Refract(vec3 d, vec3 n, real eta, vec3 *t) {
     real cosI = std::min(real(1), std::max(real(0), -Dot(d, n)));
     real cosT;
@@ -202,6 +206,7 @@ real SchlickReflectance(real cosI, real eta) {
 
 // Whether the ray `next` is past the assignment's limit on a chain of rays: at most `depth` of
 // them, the eye's ray the first. FollowRay sends no ray past it: those are black.
+// Checked by TestDepth (tests/test_handout_light.cpp).
 static bool PastDepth(const Shading *sh, RayChain next) {
     return next.number > sh->settings->depth;
 }
