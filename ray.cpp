@@ -155,7 +155,7 @@ static int Run(int argc, char **argv) {
     }
     if (opt.help || opt.version) {
         if (opt.help)
-            fputs(Usage().c_str(), stdout);
+            fputs(UsageText().c_str(), stdout);
         else
             PrintVersion();
         return 0;

@@ -300,7 +300,7 @@ const int kPlainLayout = 3;
 extern const char *kVersion;
 
 // --help's text.
-std::string Usage();
+std::string UsageText();
 
 // Reads the command line into *opt; false with *error (one line) for anything not allowed:
 // unknown options, missing or bad values, an option given twice, modes that do not go together.

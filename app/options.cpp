@@ -82,7 +82,7 @@ static const char *kUsageEnd =
     "\n"
     "  --help, --version        this text; the version\n";
 
-std::string Usage() { return std::string(kUsageStart) + kMethodsUsage + kUsageEnd; }
+std::string UsageText() { return std::string(kUsageStart) + kMethodsUsage + kUsageEnd; }
 
 // Reads a whole number in [lo, hi] (ParseWholeNumber); an error names the option.
 static bool ParseInt(const char *text, int lo, int hi, const char *what, int *value,
