@@ -132,7 +132,9 @@ static color PhongColor(const Shading *sh, const Surface *s) {
 
 // The assignment handout's mirror direction of d about the unit normal n: r = d - 2 (d.n) n.
 // Checked by TestReflect (tests/test_handout_light.cpp).
-vec3 Reflect(vec3 d, vec3 n) { return d - (2 * Dot(d, n)) * n; }
+vec3 Reflect(vec3 d, vec3 n) {
+    return d - (2 * Dot(d, n)) * n;
+}
 
 // cos(t), the cosine of the refracted angle, for cos(i) and eta = n1 / n2; false under total
 // internal reflection. Snell's law gives cos^2(t) = 1 - eta^2 (1 - cos^2(i)); written that way it
