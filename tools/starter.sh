@@ -3,9 +3,10 @@
 # DIR/rt-starter.tar.gz, and Gradescope's autograder, DIR/gradescope and DIR/autograder.zip
 # (`make starter`; SEED=N chooses the autograder's scenes): rt's teaching core and app/ as given code, with the
 # functions tools/starter/stubs.list names replaced by stubs (tools/starter/stubs.txt, or
-# STUBS_TXT), and without the robust/ and fast/ wings: the functions stubs.txt names, and the
-# statements marked `// robust/: ...` or `// fast/: ...` (tools/starter/regions.awk). The kit is
-# made from the very code rt tests; a name in stubs.txt that rt no longer defines stops it.
+# STUBS_TXT), and without the robust/ and fast/ wings: the statements marked `// robust/: ...`
+# or `// fast/: ...` left out, and the functions stubs.txt names replaced, found by name
+# (tools/starter/regions.awk). The kit is made from the very code rt tests; a name in stubs.txt
+# that rt no longer defines stops it.
 # --solved keeps rt's bodies in place of the stubs (the kit's checks must then all pass), and
 # writes no Gradescope bundle.
 # --reading writes the reading edition into DIR itself (`make reading`): solved, every step's

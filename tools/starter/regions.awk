@@ -137,9 +137,11 @@ function EndSignature(last,    s, oneLine) {
         sig = MaybeUnused(sig)
     if (s != "" && kind[s] == "whole" && Applies(s)) {
         DropComments()
-        Flush()
-        printf "%s", text[s]
         gone = text[s] == "" # (then the blank line after it goes too)
+        if (!gone) {
+            Flush()
+            printf "%s", text[s]
+        }
         afterWhole = oneLine && gone
         if (!oneLine) {
             state = "skip"
