@@ -9,9 +9,7 @@
 // honest bound on that point's error, for the rays that leave it, and no hit where the point is
 // not a number. Compiled with -ffp-contract=off: see the Makefile.
 #include "ray.h"
-// starter: begin kit-robust-include
-#include "robust/robust.h"
-// starter: end
+#include "robust/robust.h" // robust/: the watertight test, rescaling, leaving a surface
 
 #include <algorithm>
 
@@ -21,8 +19,7 @@
 // computes it, the normal (p - c) / r turned toward the ray, and the point's honest error bound,
 // measured, not assumed: how far o + t d is from the sphere. False (and *hit untouched) for a
 // point beyond the range of numbers, where the quadratic has no answer.
-[[maybe_unused]] static bool SetHandoutSphereHit(const Sphere *s, const Ray *ray, real t,
-                                                 RayHit *hit) {
+static bool SetHandoutSphereHit(const Sphere *s, const Ray *ray, real t, RayHit *hit) {
     vec3 point = ray->origin + t * ray->dir, local = point - s->center;
     vec3 normal = (1 / s->radius) * local;
     real offSphere = std::fabs(SafeLength(local) - s->radius) + Gamma(4) * SafeLength(local);
@@ -43,8 +40,8 @@
 // above tMin (the second handout: the least non-negative one), and the point o + t d. It loses a
 // small sphere far away (C swallows r^2) and the near root of a big one (-B + sqrt cancels).
 // SetHandoutSphereHit writes the hit record.
+// Checked by TestSphere (tests/test_handout.cpp).
 bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
-    // starter: begin sphere
     vec3 d = ray->dir, oc = ray->origin - s->center;
     real A = Dot(d, d);
     real B = 2 * Dot(d, oc);
@@ -58,10 +55,8 @@ bool IntersectSphereTextbook(const Sphere *s, const Ray *ray, real tMin, real tM
     if (!(t > tMin && t < tMax))
         return false;
     return SetHandoutSphereHit(s, ray, t, hit);
-    // starter: end
 }
 
-// starter: begin kit-stable-sphere
 // The quadratic's discriminant halfB^2 - A C in the form A r^2 - |f x d|^2 (see SolveSphere):
 // |f x d| / |d| is how far the ray's line passes from the centre, so it is negative exactly
 // when the line misses the sphere.
@@ -188,7 +183,6 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
     hit->awayShare = 0; // never passed over
     return true;
 }
-// starter: end
 
 // ---- triangles: the handouts' forms (rt's own, watertight: robust/watertight.cpp) ----------
 
@@ -196,8 +190,7 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
 // computes it, and its honest error bound, measured: how far that point is from the triangle's
 // plane, plus its own rounding. False (and *hit untouched) for a triangle with no area, or a
 // point that is not a number.
-[[maybe_unused]] static bool SetHandoutTriangleHit(const Triangle *tri, const Ray *ray, real t,
-                                                   RayHit *hit) {
+static bool SetHandoutTriangleHit(const Triangle *tri, const Ray *ray, real t, RayHit *hit) {
     vec3 unit = SafeNormalize(Cross(tri->b - tri->a, tri->c - tri->a));
     vec3 p = ray->origin + t * ray->dir;
     real offPlane =
@@ -219,9 +212,9 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
 // Graphics, §4.4.2). Not watertight: each triangle rounds its shared edges differently, so rays
 // through an edge can slip between two triangles (docs/robustness.md). rt's IntersectTriangle
 // (robust/watertight.cpp) is.
+// Checked by TestCramer (tests/test_handout.cpp).
 bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                              RayHit *hit) {
-    // starter: begin cramer
     vec3 a = tri->a, b = tri->b, c = tri->c, e = ray->origin, d = ray->dir;
     real A = a.x - b.x, B = a.y - b.y, C = a.z - b.z;
     real D = a.x - c.x, E = a.y - c.y, F = a.z - c.z;
@@ -247,7 +240,6 @@ bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, rea
         return false;
 
     return SetHandoutTriangleHit(tri, ray, t, hit);
-    // starter: end
 }
 
 // The second handout's triangle test, in two steps. First the plane: n = (b - a) x (c - a) and
@@ -259,9 +251,9 @@ bool IntersectTriangleCramer(const Triangle *tri, const Ray *ray, real tMin, rea
 // rounding, from three products instead of nine. Not watertight: p is rounded, and each
 // triangle rounds its shared edge its own way. Its point's error bound is measured: how far
 // o + t d is from the plane, plus its own rounding.
+// Checked by TestPlane (tests/test_handout.cpp).
 bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real tMax,
                             RayHit *hit) {
-    // starter: begin plane
     vec3 a = tri->a, b = tri->b, c = tri->c;
     vec3 n = Cross(b - a, c - a);
     real nDotD = Dot(n, ray->dir);
@@ -279,30 +271,25 @@ bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real
         Component(Cross(a - c, p - c), k) * nk < 0)
         return false;
     return SetHandoutTriangleHit(tri, ray, t, hit);
-    // starter: end
 }
 
 // ---- the nearest hit over the list of shapes ----------------------------------------------
 
 // One sphere, and one triangle, by the chosen method.
-[[maybe_unused]] static bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, real tMin,
-                                       real tMax, RayHit *hit) {
-    // starter: begin kit-hit-sphere
+static bool HitSphere(Methods methods, const Sphere *s, const Ray *ray, real tMin, real tMax,
+                      RayHit *hit) {
     if (methods.sphere == SPHERE_TEXTBOOK)
         return IntersectSphereTextbook(s, ray, tMin, tMax, hit);
     return IntersectSphere(s, ray, tMin, tMax, hit);
-    // starter: end
 }
 
-[[maybe_unused]] static bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray,
-                                         real tMin, real tMax, RayHit *hit) {
+static bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray, real tMin, real tMax,
+                        RayHit *hit) {
     if (methods.triangle == TRIANGLE_CRAMER)
         return IntersectTriangleCramer(tri, ray, tMin, tMax, hit);
     if (methods.triangle == TRIANGLE_PLANE)
         return IntersectTrianglePlane(tri, ray, tMin, tMax, hit);
-    // starter: begin kit-hit-triangle
-    return IntersectTriangle(tri, ray, tMin, tMax, hit);
-    // starter: end
+    return IntersectTriangle(tri, ray, tMin, tMax, hit); // robust/: rt's own, watertight
 }
 
 // The second handout's nearest hit over the list of shapes: every hit shrinks tMax, so each
@@ -311,9 +298,9 @@ bool IntersectTrianglePlane(const Triangle *tri, const Ray *ray, real tMin, real
 // names one, is passed over (the second handout's rule, or rt's where the ray plainly goes away
 // from a triangle: StartLeaving). The skip comes before the test, because a test that hits
 // writes *hit.
+// Checked by TestNearestHit (tests/test_handout.cpp).
 static bool HitList(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from,
                     real tMin, real tMax, bool anyHit, RayHit *hit) {
-    // starter: begin nearest-hit
     bool found = false;
     for (int i = 0; i < (int)scene->spheres.size(); i++) {
         if ((from->shape == SHAPE_SPHERE && i == from->index) ||
@@ -336,29 +323,23 @@ static bool HitList(const Scene *scene, Methods methods, const Ray *ray, const S
             return true;
     }
     return found;
-    // starter: end
 }
 
 bool SearchList(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from, real tMax,
                 bool anyHit, RayHit *hit) {
-    // starter: begin kit-search-list
     ScaledRay s; // robust: a direction of 1e-200 or 1e200 rescaled, so no test squares it
     if (!ScaleRay(ray, from->tMin, tMax, &s))
         return false;
     bool found = HitList(scene, methods, SearchedRay(&s, ray), from, s.tMin, s.tMax, anyHit, hit);
     return found && ScaleBack(&s, from->tMin, tMax, hit);
-    // starter: end
 }
 
 // Every search: the list above, or the same answer found faster by the speed machinery that main
 // may install.
 static inline bool Search(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from,
                           real tMax, bool anyHit, RayHit *hit) {
-    // starter: begin kit-seam
-    const Accelerator *fast = scene->accelerator;
-    if (fast) // fast: main's speed machinery (fast/), SearchList's very answer
+    if (const Accelerator *fast = scene->accelerator) // fast/: SearchList's very answer, faster
         return fast->search(fast, scene, methods, ray, from, tMax, anyHit, hit);
-    // starter: end
     return SearchList(scene, methods, ray, from, tMax, anyHit, hit);
 }
 
@@ -387,11 +368,8 @@ bool AnyHitFrom(const Scene *scene, Methods methods, const Ray *ray, const SelfH
 
 void FindEyeRayHits(const Scene *scene, Methods methods, const Ray *rays, int count, RayHit *hits,
                     bool *found) {
-    // starter: begin kit-eye-rays
-    const Accelerator *fast = scene->accelerator;
-    if (fast) // fast: rays that go nearly the same way searched together (a packet), the rest alone
+    if (const Accelerator *fast = scene->accelerator) // fast/: packets and a BVH, the same answers
         return fast->eyeRays(fast, scene, methods, rays, count, hits, found);
-    // starter: end
     for (int k = 0; k < count; k++)
         found[k] = SearchList(scene, methods, &rays[k], &kNoSelfHit, kInfinity, false, &hits[k]);
 }
@@ -411,13 +389,11 @@ void LeaveSurface(const Scene *scene, const RayHit *hit, vec3 dir, const Methods
     *from = kNoSelfHit;
     ray->dir = dir;
     ray->origin = hit->point;
-    // starter: begin kit-leave-surface
-    if (methods->selfHit == SELF_HIT_BOUND) { // handout: skip the shape left, or t_min = 0.001
+    if (methods->selfHit == SELF_HIT_BOUND) { // robust/: rt's way; the handouts' two below
         ray->origin = DeparturePoint(scene, methods, hit, dir, dir); // robust: off, in from edges
         *from = StartLeaving(scene, hit, dir, dir);
         return;
     }
-    // starter: end
     if (methods->selfHit == SELF_HIT_EPSILON) {
         from->tMin = methods->epsilon / SafeLength(dir); // epsilon world units along the ray
     } else {
@@ -434,14 +410,12 @@ void LeaveSurface(const Scene *scene, const RayHit *hit, vec3 dir, const Methods
 bool ShadowRay(const Scene *scene, const RayHit *hit, vec3 lightPosition, const Methods *methods,
                Ray *ray, SelfHit *from) {
     vec3 side = lightPosition - hit->point;
-    // starter: begin kit-shadow-ray
-    if (methods->selfHit == SELF_HIT_BOUND) {
+    if (methods->selfHit == SELF_HIT_BOUND) { // robust/: rt's way, as in LeaveSurface
         ray->origin = DeparturePoint(scene, methods, hit, side, hit->normal); // robust: as above
         ray->dir = lightPosition - ray->origin;
         *from = StartLeaving(scene, hit, side, ray->dir);
         return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
     }
-    // starter: end
     LeaveSurface(scene, hit, side, methods, ray, from);
     ray->dir = lightPosition - ray->origin;
     if (methods->selfHit == SELF_HIT_EPSILON)
@@ -451,13 +425,12 @@ bool ShadowRay(const Scene *scene, const RayHit *hit, vec3 lightPosition, const 
 
 // The handouts' hard shadow: a light is visible from a hit when nothing lies between them, that
 // is, when the shadow ray (t = 1 at the light) meets no shape at t < 1.
+// Checked by TestShadow (tests/test_handout_light.cpp).
 bool LightVisible(const Scene *scene, const Methods *methods, const RayHit *hit,
                   vec3 lightPosition) {
-    // starter: begin shadow
     Ray shadow;
     SelfHit from;
     if (!ShadowRay(scene, hit, lightPosition, methods, &shadow, &from))
         return true; // the light is where the ray starts: nothing can be in between
     return !AnyHitFrom(scene, *methods, &shadow, &from, 1);
-    // starter: end
 }

@@ -3,9 +3,7 @@
 // every diffuse hit), multiple importance sampling (MIS), cosine sampling drawn directly, and
 // Russian roulette. A point light of intensity I gives irradiance I cos(theta) / r^2.
 #include "path.h"
-// starter: begin kit-robust-include
-#include "robust/robust.h"
-// starter: end
+#include "robust/robust.h" // robust/: StartLeaving, for rays from Depart's point
 
 #include <algorithm>
 #include <vector>
@@ -22,23 +20,19 @@
 // side whatever the direction (DeparturePoint): one point, moved once a vertex. Under the other
 // methods LeaveSurface and ShadowRay decide for each ray.
 static void Depart(Path *path, const RayHit *hit) {
-    // starter: begin kit-depart
     path->departs = path->settings->methods.selfHit == SELF_HIT_BOUND;
     if (path->departs)
         path->departure =
             DeparturePoint(path->scene, &path->settings->methods, hit, hit->normal, hit->normal);
-    // starter: end
 }
 
 // ShadowRay from the hit to `target`, from the departure point when there is one.
 static bool CastShadow(const Path *path, const RayHit *hit, vec3 target, Ray *ray, SelfHit *from) {
-    // starter: begin kit-cast-shadow
     if (!path->departs)
         return ShadowRay(path->scene, hit, target, &path->settings->methods, ray, from);
     *ray = {path->departure, target - path->departure};
     *from = StartLeaving(path->scene, hit, hit->normal, ray->dir);
     return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
-    // starter: end
 }
 
 // Whether point p (unit normal n) of emitter e can face the shaded hit at all: from outside a
@@ -232,13 +226,11 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
     path->through = path->through *
                     (method == SCATTER_COSINE ? rho : (cosTheta / (kPi * path->scatterPdf)) * rho);
     path->kind = RAY_DIFFUSE;
-    // starter: begin kit-scatter
-    if (!path->departs)
+    if (!path->departs) // robust/: the else, from Depart's point
         LeaveSurface(path->scene, hit, dir, &path->settings->methods, &path->ray, &path->from);
     else
         path->ray = {path->departure, dir},
         path->from = StartLeaving(path->scene, hit, hit->normal, dir);
-    // starter: end
     return true;
 }
 

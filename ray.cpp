@@ -6,9 +6,7 @@
 // tree, compare two images. Errors are values until they reach main, which prints one line
 // `ray: MESSAGE` and exits with 2 (bad usage or input) or 3 (I/O).
 #include "app/app.h"
-// starter: begin kit-fast-include
-#include "fast/fast.h"
-// starter: end
+#include "fast/fast.h" // fast/: the scene committed into blocks and a BVH, searched faster
 
 #include <cerrno>
 #include <chrono>
@@ -17,10 +15,6 @@
 #include <cstring>
 #include <new>
 #include <sys/stat.h>
-
-// starter: begin kit-layout-words
-static_assert(LAYOUT_PLAIN == kPlainLayout, "--layout's words in LayoutChoice's order");
-// starter: end
 
 // The scenes built in C++ (the scene_*.cpp files, which the Makefile compiles, all of them), by
 // the name the command line gives them, and the image each writes by default. A scene of your
@@ -74,6 +68,12 @@ static double SecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// What an image of shapes that no eye ray met is: the background alone, and what may be wrong.
+static const char *kNoHitWarning =
+    "warning: no eye ray met a shape: the image is the background alone (is the camera turned "
+    "away, or the scene far larger or smaller than it sees? --stats gives each mesh's bounding "
+    "box)";
+
 // A render (or --view) to the output file, which is checked before the render, so a mistake in it
 // costs no time. Returns the exit code.
 static int RenderToFile(const Options *opt, const Scene *scene, const RenderSettings *settings,
@@ -99,11 +99,7 @@ static int RenderToFile(const Options *opt, const Scene *scene, const RenderSett
     }
     bool shapes = !scene->spheres.empty() || !scene->triangles.empty(); // (else said before)
     if (!opt->view && stats.primary > 0 && stats.primaryHits == 0 && shapes)
-        // starter: begin kit-no-hit
-        Complain("warning: no eye ray met a shape: the image is the background alone (is the "
-                 "camera turned away, or the scene far larger or smaller than it sees? --stats "
-                 "gives each mesh's bounding box)");
-        // starter: end
+        Complain(kNoHitWarning);
     if (opt->stats) {
         fprintf(stderr, "%s\n", layoutText.c_str());
         PrintMeshes(scene);
@@ -131,6 +127,23 @@ static bool LoadCheckedScene(Options *opt, Scene *scene, std::string *defaultOut
     return true;
 }
 
+// --version: rt's, and which form of fast/'s search (its kernels) this build and processor run.
+static void PrintVersion() { printf("%s\nkernels: %s\n", kVersion, KernelName()); }
+
+// The speed machinery, for the robust tests only (the handouts' methods are the plain loop, as
+// written): the scene committed, its BVH built on as many threads as the render runs on (two at
+// most), and its accelerator installed in the scene, *layout holding them for as long as the
+// scene is searched. Returns what it is, for --stats.
+static std::string CommitFast(const Options *opt, const RenderSettings *settings, Scene *scene,
+                              SceneLayout *layout) {
+    static_assert(LAYOUT_PLAIN == kPlainLayout, "--layout's words in LayoutChoice's order");
+    auto commitStart = std::chrono::steady_clock::now();
+    if (settings->methods.triangle == TRIANGLE_WATERTIGHT &&
+        settings->methods.sphere == SPHERE_STABLE)
+        CommitScene(scene, (LayoutChoice)opt->layout, settings->threads, layout);
+    return DescribeLayout(scene, layout, SecondsSince(commitStart));
+}
+
 // The program: one mode per run (help, compare, probe, pixel tree, render or view).
 static int Run(int argc, char **argv) {
     auto start = std::chrono::steady_clock::now();
@@ -142,11 +155,9 @@ static int Run(int argc, char **argv) {
     }
     if (opt.help || opt.version) {
         if (opt.help)
-            fputs(kUsage, stdout);
-        else // (the kernels: which form of fast/'s search this build and processor run)
-            // starter: begin kit-version
-            printf("%s\nkernels: %s\n", kVersion, KernelName());
-        // starter: end
+            fputs(UsageText().c_str(), stdout);
+        else
+            PrintVersion();
         return 0;
     }
     if (opt.compare)
@@ -155,17 +166,8 @@ static int Run(int argc, char **argv) {
     if (!LoadCheckedScene(&opt, &scene, &defaultOutput))
         return 2;
     RenderSettings settings = ChosenSettings(&opt, &scene);
-    // The speed machinery, for the robust tests only (the handouts' methods are the plain loop,
-    // as written): the scene committed, its BVH built on as many threads as the render runs on
-    // (two at most), and its accelerator installed in the scene
-    // starter: begin kit-commit
-    SceneLayout layout;
-    auto commitStart = std::chrono::steady_clock::now();
-    if (settings.methods.triangle == TRIANGLE_WATERTIGHT &&
-        settings.methods.sphere == SPHERE_STABLE)
-        CommitScene(&scene, (LayoutChoice)opt.layout, settings.threads, &layout);
-    std::string layoutText = DescribeLayout(&scene, &layout, SecondsSince(commitStart));
-    // starter: end
+    SceneLayout layout;                                                    // fast/: blocks, a BVH
+    std::string layoutText = CommitFast(&opt, &settings, &scene, &layout); // fast/: built here
     if (opt.probeRay || !opt.raysFile.empty())
         return ProbeMode(&opt, &scene, &settings);
     if (opt.pixel)

@@ -279,11 +279,10 @@ void GetLensCameraRay(const Camera *camera, int width, int height, vec2 screenCo
 // Writes the fields every shape fills the same way; `outwardNormal` must be unit length.
 // The normal is turned to face the incoming ray, and frontFace records which side it came from;
 // a ray that grazes the surface (d.N = 0, a tangent) counts as arriving from outside.
+// Checked by TestNormals (tests/test_handout.cpp).
 inline void SetFaceNormal(const Ray *ray, vec3 outwardNormal, RayHit *hit) {
-    // starter: begin normals
     hit->frontFace = !(Dot(ray->dir, outwardNormal) > 0);
     hit->normal = hit->frontFace ? outwardNormal : -outwardNormal;
-    // starter: end
 }
 
 // Each intersect function returns true only for a hit with t in the open interval (tMin, tMax);

@@ -22,8 +22,8 @@
 // pixel): v - whole is exact (whole is v with its fraction cut off, so the difference is that
 // fraction), where the shortcut (int)(v + 0.5) is not: v + 0.5 can round up to the next integer,
 // as it does for the largest float below 0.5, which c * 255 reaches in the float build.
+// Checked by TestClamp (tests/test_handout_light.cpp).
 uint8_t ToByte(real c) {
-    // starter: begin clamp
     if (!(c > 0))
         return 0;
     if (c >= 1)
@@ -31,7 +31,6 @@ uint8_t ToByte(real c) {
     real v = c * 255;
     int whole = (int)v;
     return (uint8_t)(whole + (v - (real)whole >= real(0.5)));
-    // starter: end
 }
 
 // The sRGB transfer curve (IEC 61966-2-1): linear light in [0, 1] to the encoded value a display
@@ -124,10 +123,11 @@ void TraceEyeRays(const Scene *scene, const RenderSettings *settings, const Ray 
     bool found[kEyeRaysTogether];
     FindEyeRayHits(scene, settings->methods, rays, count, hits, found);
     for (int k = 0; k < count; k++)
-        colours[k] = scene->shading == SHADING_PATH
-                         ? TracePath(scene, settings, &rays[k], found[k], &hits[k], i, j, s + k, log)
-                         : ShadeFound(scene, settings, RAY_PRIMARY, &rays[k], RayChain{1, 1},
-                                      found[k], &hits[k], log);
+        colours[k] =
+            scene->shading == SHADING_PATH
+                ? TracePath(scene, settings, &rays[k], found[k], &hits[k], i, j, s + k, log)
+                : ShadeFound(scene, settings, RAY_PRIMARY, &rays[k], RayChain{1, 1}, found[k],
+                             &hits[k], log);
 }
 
 // Sample s of pixel (i, j), alone: the camera ray through `position`, and its colour.

@@ -55,7 +55,8 @@ struct Surface {
 // The bookkeeping of a shadow ray, which changes no colour: it is counted, its answer goes into
 // the hash of what a sample's rays met (adaptive sampling compares them), and when a ray tree is
 // being recorded (--pixel) it becomes a node, with the nearest shape that blocks it.
-static void LogShadowRay(const ShadeContext *sh, const RayHit *hit, const Light *light, bool visible) {
+static void LogShadowRay(const ShadeContext *sh, const RayHit *hit, const Light *light,
+                         bool visible) {
     const Methods *methods = &sh->settings->methods;
     sh->log->stats.shadow++;
     if (sh->settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads it
@@ -71,8 +72,7 @@ static void LogShadowRay(const ShadeContext *sh, const RayHit *hit, const Light 
 
 // Whether the light shines on the hit: the assignment's hard shadow (LightVisible, geometry.cpp),
 // one shadow ray. Without shapes that could block (Effects), no ray is needed.
-[[maybe_unused]] static bool LightIsVisible(const ShadeContext *sh, const RayHit *hit,
-                                            const Light *light) {
+static bool ShadowTest(const ShadeContext *sh, const RayHit *hit, const Light *light) {
     if (!sh->settings->effects.shadows) // (no shape could stand in the way)
         return true;
     bool visible = LightVisible(sh->scene, &sh->settings->methods, hit, light->position);
@@ -85,8 +85,8 @@ static void LogShadowRay(const ShadeContext *sh, const RayHit *hit, const Light 
 // (N.L <= 0) contributes nothing and costs no shadow ray (second handout). N is the surface's
 // normal; on a smooth mesh, the one interpolated from its corners (SurfaceNormal), and a light
 // behind the flat triangle is then seen or not as its shadow ray finds (LightVisible).
+// Checked by TestFloor (tests/test_handout_light.cpp).
 static color FloorColor(const ShadeContext *sh, const Surface *s) {
-    // starter: begin floor
     const RayHit *hit = s->hit;
     real a = sh->scene->ambient; // handout: kd * max(ambient, N.L)
     if (!LightsCanShow(sh->scene, s->m, sh->settings->effects.lightSum))
@@ -98,12 +98,11 @@ static color FloorColor(const ShadeContext *sh, const Surface *s) {
             continue;
         vec3 toLight = light.position - hit->point;
         real nDotL = Dot(n, toLight);
-        if (!(nDotL > 0) || !LightIsVisible(sh, hit, &light))
+        if (!(nDotL > 0) || !ShadowTest(sh, hit, &light))
             continue;
         sum = sum + (nDotL / SafeLength(toLight)) * light.intensity; // handout: N.normalize(L)
     }
     return s->m->diffuse * color{std::max(a, sum.x), std::max(a, sum.y), std::max(a, sum.z)};
-    // starter: end
 }
 
 // The second handout's Phong lighting (`shading phong`):
@@ -111,8 +110,8 @@ static color FloorColor(const ShadeContext *sh, const Surface *s) {
 // R = -L + 2 (N.L) N the light's mirror direction, V toward the viewer, all unit vectors.
 // The N.L > 0 gate keeps a light below the horizon from making a highlight; max(0, R.V) before
 // pow keeps a fractional n from meeting a negative base (a NaN). N as in FloorColor.
+// Checked by TestPhong (tests/test_handout_light.cpp).
 static color PhongColor(const ShadeContext *sh, const Surface *s) {
-    // starter: begin phong
     const Material *m = s->m;
     color result = sh->scene->ambient * m->ambient;
     vec3 n = SurfaceNormal(sh->scene, s->hit), v = -SafeNormalize(s->ray->dir);
@@ -124,7 +123,7 @@ static color PhongColor(const ShadeContext *sh, const Surface *s) {
             continue;
         vec3 l = SafeNormalize(light.position - s->hit->point);
         real nDotL = Dot(n, l);
-        if (!(nDotL > 0) || !LightIsVisible(sh, s->hit, &light))
+        if (!(nDotL > 0) || !ShadowTest(sh, s->hit, &light))
             continue;
         color term = nDotL * m->diffuse;
         if (specular) {
@@ -136,15 +135,11 @@ static color PhongColor(const ShadeContext *sh, const Surface *s) {
         result = result + light.intensity * term;
     }
     return result;
-    // starter: end
 }
 
 // The assignment handout's mirror direction of d about the unit normal n: r = d - 2 (d.n) n.
-vec3 Reflect(vec3 d, vec3 n) {
-    // starter: begin reflect
-    return d - (2 * Dot(d, n)) * n;
-    // starter: end
-}
+// Checked by TestReflect (tests/test_handout_light.cpp).
+vec3 Reflect(vec3 d, vec3 n) { return d - (2 * Dot(d, n)) * n; }
 
 // cos(t), the cosine of the refracted angle, for cos(i) and eta = n1 / n2; false under total
 // internal reflection. Snell's law gives cos^2(t) = 1 - eta^2 (1 - cos^2(i)); written that way it
@@ -174,15 +169,14 @@ static bool RefractedCosine(real cosI, real eta, real *cosT) {
 // |r_out_perp|^2 = eta^2 sin^2(i) = 1 - cos^2(t).
 // Returns false, and leaves *t alone, for total internal reflection (sin(t) >= 1). The cosine is
 // clamped to [0, 1] because d.n of unit vectors can round past 1.
+// Checked by TestRefraction (tests/test_handout_light.cpp).
 bool Refract(vec3 d, vec3 n, real eta, vec3 *t) {
-    // starter: begin refraction
     real cosI = std::min(real(1), std::max(real(0), -Dot(d, n)));
     real cosT;
     if (!RefractedCosine(cosI, eta, &cosT))
         return false;
     *t = eta * d + (eta * cosI - cosT) * n; // journal: r_out_perp + r_out_parallel
     return true;
-    // starter: end
 }
 
 // The exact Fresnel reflectance of a clear dielectric for unpolarised light, the average of the
@@ -217,15 +211,21 @@ real SchlickReflectance(real cosI, real eta) {
     return r0 + (1 - r0) * std::pow(1 - cosI, real(5));
 }
 
+// Whether the ray `next` is past the assignment's limit on a chain of rays: at most `depth` of
+// them, the eye's ray the first. FollowRay sends no ray past it: those are black.
+// Checked by TestDepth (tests/test_handout_light.cpp).
+static bool PastDepth(const ShadeContext *sh, RayChain next) {
+    return next.number > sh->settings->depth;
+}
+
 // Sends the next ray of the chain from the hit point in direction dir, if it is allowed: its
 // number must not pass `depth`, and its colour, counted with `share` (the mirror fraction or
 // the Fresnel weight), must be able to change the pixel (kMinRayWeight). Otherwise black.
-static color FollowRay(const ShadeContext *sh, const Surface *s, RayKind kind, vec3 dir, real share) {
+static color FollowRay(const ShadeContext *sh, const Surface *s, RayKind kind, vec3 dir,
+                       real share) {
     RayChain next = {s->chain.number + 1, s->chain.weight * share};
-    // starter: begin depth
-    if (next.number > sh->settings->depth) // the assignment: at most `depth` rays in a chain
+    if (PastDepth(sh, next)) // the assignment: at most `depth` rays in a chain
         return {0, 0, 0};
-    // starter: end
     if (next.weight < kMinRayWeight)
         return {0, 0, 0};
     Ray ray;
@@ -320,7 +320,6 @@ color TraceRay(const Scene *scene, const RenderSettings *settings, RayKind kind,
     bool found = FindNearestHitFrom(scene, settings->methods, ray, from, kInfinity, &hit);
     return ShadeFound(scene, settings, kind, ray, chain, found, &hit, log);
 }
-
 
 // ---- what a scene calls for ----------------------------------------------------------------
 

@@ -5,9 +5,7 @@
 // triangle's own (geometric) normal, as pbrt-v4 keeps the two apart (§3.10.2). And where a ray
 // that leaves a smooth mesh starts: out at the curved surface, where the way there is free.
 #include "ray.h"
-// starter: begin kit-robust-include
-#include "robust/robust.h"
-// starter: end
+#include "robust/robust.h" // robust/: LeavingPoint and TerminatorOrigin, for DeparturePoint
 
 #include <algorithm>
 
@@ -47,7 +45,6 @@ vec3 SmoothNormal(const Scene *scene, const RayHit *hit) {
     return hit->frontFace ? n : -n;
 }
 
-// starter: begin kit-departure
 vec3 DeparturePoint(const Scene *scene, const Methods *methods, const RayHit *hit, vec3 dir,
                     vec3 toward) {
     if (!HasCornerNormals(scene, hit))
@@ -63,4 +60,3 @@ vec3 DeparturePoint(const Scene *scene, const Methods *methods, const RayHit *hi
     Ray way = {flat, moved - flat};
     return AnyHit(scene, *methods, &way, 0, 2) ? flat : moved;
 }
-// starter: end

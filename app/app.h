@@ -297,7 +297,10 @@ struct Options {
 // Options::layout for `--layout plain` (LAYOUT_PLAIN: main checks that they agree).
 const int kPlainLayout = 3;
 
-extern const char *kVersion, *kUsage;
+extern const char *kVersion;
+
+// --help's text.
+std::string UsageText();
 
 // Reads the command line into *opt; false with *error (one line) for anything not allowed:
 // unknown options, missing or bad values, an option given twice, modes that do not go together.

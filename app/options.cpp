@@ -9,7 +9,9 @@
 
 const char *kVersion = "rt 0.2.0";
 
-const char *kUsage =
+// --help's text, in three parts: the options before the numerical methods', theirs (a starter
+// kit has the handouts' alone), and the options after.
+static const char *kUsageStart =
     "usage: ray [SCENE] [options]\n"
     "\n"
     "SCENE is `default` (the assignment scene, also when omitted), `test` (rt's own scene)\n"
@@ -26,8 +28,9 @@ const char *kUsage =
     "                           only where those differ (N > 5; up to 5 it is jitter; with\n"
     "                           shading path, 16 random pilots, then up to N: path-tracing.md)\n"
     "  --depth N                most rays in one chain, primary included, 1..1000 (default 10)\n"
-    "  --threads N              worker threads, 1..1024 (default: all hardware threads)\n"
-    // starter: begin kit-usage
+    "  --threads N              worker threads, 1..1024 (default: all hardware threads)\n";
+
+static const char *kMethodsUsage =
     "  --methods robust|handout the numerical methods: rt's robust ones (default), or what a\n"
     "                           student following the course documents writes (the slides'\n"
     "                           GetRay, textbook sphere, Cramer, --self-hit epsilon, Schlick);\n"
@@ -44,8 +47,9 @@ const char *kUsage =
     "  --layout auto|list|bvh|plain\n"
     "                           how the robust tests search the shapes: blocks, with a BVH\n"
     "                           from 32 triangles on (auto, default), one list of blocks, a\n"
-    "                           BVH, or the plain loop over the shapes; the answers are the same\n"
-    // starter: end
+    "                           BVH, or the plain loop over the shapes; the answers are the same\n";
+
+static const char *kUsageEnd =
     "  --estimator full|journal `shading path`: rt's estimator (default: the options below), or\n"
     "                           the journal's, as Ray Tracing in One Weekend writes it\n"
     "  --scatter cosine|uniform `shading path`: diffuse directions drawn by cos(theta) (default)\n"
@@ -77,6 +81,8 @@ const char *kUsage =
     "  --tolerance T            largest channel difference (0..255) still counted equal (0)\n"
     "\n"
     "  --help, --version        this text; the version\n";
+
+std::string UsageText() { return std::string(kUsageStart) + kMethodsUsage + kUsageEnd; }
 
 // Reads a whole number in [lo, hi] (ParseWholeNumber); an error names the option.
 static bool ParseInt(const char *text, int lo, int hi, const char *what, int *value,
@@ -137,9 +143,7 @@ static bool ParseSelfHit(const std::string &word, Options *opt, std::string *err
 }
 
 Methods ChosenMethods(const Options *opt) {
-    // starter: begin kit-methods
-    Methods m = opt->methodSet == 1 ? kHandoutMethods : kRobustMethods;
-    // starter: end
+    Methods m = opt->methodSet == 1 ? kHandoutMethods : kRobustMethods; // robust/: the default
     if (opt->sphere >= 0)
         m.sphere = (SphereMethod)opt->sphere;
     if (opt->triangle >= 0)
@@ -308,6 +312,19 @@ static bool CheckUnused(const Options *opt, const std::string &seen, std::string
     return true;
 }
 
+// Whether the methods chosen go with the options given (`seen`, each between spaces): --layout's
+// search is for the robust tests; the handouts' run in the plain loop, as written.
+static bool CheckMethods(const Options *opt, const std::string &seen, std::string *error) {
+    Methods methods = ChosenMethods(opt);
+    if (seen.find(" --layout ") != std::string::npos && opt->layout != kPlainLayout &&
+        (methods.triangle != TRIANGLE_WATERTIGHT || methods.sphere != SPHERE_STABLE)) {
+        *error = "--layout auto, list and bvh go with the robust sphere and triangle tests: the "
+                 "handouts' tests run in the plain loop, as written";
+        return false;
+    }
+    return true;
+}
+
 // What must not be given together: `seen` lists the options given, each between spaces.
 static bool CheckCombinations(const Options *opt, const std::string &seen, std::string *error) {
     if (seen.find(" --tolerance ") != std::string::npos && !opt->compare) {
@@ -319,15 +336,8 @@ static bool CheckCombinations(const Options *opt, const std::string &seen, std::
         *error = "choose one of --ray, --rays, --pixel, --view and --compare";
         return false;
     }
-    Methods methods = ChosenMethods(opt);
-    // starter: begin kit-layout-check
-    if (seen.find(" --layout ") != std::string::npos && opt->layout != kPlainLayout &&
-        (methods.triangle != TRIANGLE_WATERTIGHT || methods.sphere != SPHERE_STABLE)) {
-        *error = "--layout auto, list and bvh go with the robust sphere and triangle tests: the "
-                 "handouts' tests run in the plain loop, as written";
+    if (!CheckMethods(opt, seen, error))
         return false;
-    }
-    // starter: end
     if (!opt->output.empty() && (opt->probeRay || opt->pixel || !opt->raysFile.empty())) {
         *error = "-o goes with a render, --view or --compare; probes print to standard output";
         return false;

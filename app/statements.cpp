@@ -2,9 +2,7 @@
 // shapes, lights, materials, the camera and meshes, each checked as it is read. The file's loop,
 // the settings that come once (size, shading, ...) and the messages' hints are scene_file.cpp's.
 #include "statements.h"
-// starter: begin kit-robust-include
-#include "../robust/robust.h"
-// starter: end
+#include "../robust/robust.h" // robust/: SetUpTriangle, for Unhittable
 #include "app.h"
 
 #include <cmath>
@@ -126,14 +124,12 @@ bool ReadSphere(const Statement *st, Scene *scene, std::string *error) {
 // (SetUpTriangle, at any scale: corners of 1e-200 have an area there, though their plain cross
 // product underflows to 0).
 static const char *Unhittable(const Triangle *t) {
-    // starter: begin kit-unhittable
     TriangleSetUp setUp;
     SetUpTriangle(t, &setUp);
     if (setUp.hasArea)
         return nullptr;
     return EdgesFinite(t) ? "has no area (its corners are on one line)"
                           : "has edges beyond the range of numbers";
-    // starter: end
 }
 
 bool ReadTriangle(const Statement *st, Scene *scene, std::string *error) {

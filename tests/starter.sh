@@ -82,6 +82,24 @@ STUBS_LIST=$work/crlf.list sh tools/starter.sh "$work/crlf" >/dev/null 2>&1 &&
     grep -q "Your code: the slide's sphere" "$work/crlf/rt-starter/geometry.cpp"
 check $? "a stubs.list with CR LF line ends is read"
 
+# A function of stubs.txt renamed in rt stops the kit, naming the function and its step (else the
+# kit would hand out rt's body as the stub); so does a `mark` section whose function has no mark
+tree=$work/tree
+mkdir -p "$tree/tests" && cp -R ./*.cpp ./*.h app tools "$tree/" &&
+    cp tests/test.h tests/test_handout.h tests/test_handout.cpp tests/test_handout_light.cpp \
+        tests/kit_main.cpp "$tree/tests/"
+sed 's/FloorColor(/FloorShade(/' shade.cpp >"$tree/shade.cpp"
+err=$(cd "$tree" && sh tools/starter.sh "$work/renamed" --reading 2>&1 >/dev/null)
+status=$?
+[ $status -ne 0 ] && printf '%s\n' "$err" | grep "step floor" | grep -q "FloorColor"
+check $? "a step's function renamed in rt stops the kit, naming it: $err"
+sed 's/^@@ kit-hit-triangle mark HitTriangle$/@@ kit-hit-triangle mark FindNearestHit/' \
+    tools/starter/stubs.txt >"$work/stubs.txt"
+err=$(STUBS_TXT=$work/stubs.txt sh tools/starter.sh "$work/unmarked" --reading 2>&1 >/dev/null)
+status=$?
+[ $status -ne 0 ] && printf '%s\n' "$err" | grep "kit-hit-triangle" | grep -q "FindNearestHit, which has no statement"
+check $? "a section that replaces a marked line where there is none stops the kit: $err"
+
 sh tools/starter.sh "$work/solved" --solved >/dev/null
 solved=$work/solved/rt-starter
 build "$solved"

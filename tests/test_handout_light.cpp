@@ -199,7 +199,7 @@ void TestPhong() {
            "you give " + Vec(c),
            Near(c, {0.6, 0.6, 0.6}) ? "the highlight shows where the light is hidden: a hidden "
                                       "light adds neither term"
-                                    : "a light counts only if it is visible (LightIsVisible)");
+                                    : "a light counts only if it is visible (ShadowTest)");
 }
 
 // ---- refraction ---------------------------------------------------------------------------------

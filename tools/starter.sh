@@ -2,9 +2,11 @@
 # tools/starter.sh DIR [--solved] [--with-wings] -- writes the student kit, DIR/rt-starter and
 # DIR/rt-starter.tar.gz, and Gradescope's autograder, DIR/gradescope and DIR/autograder.zip
 # (`make starter`; SEED=N chooses the autograder's scenes): rt's teaching core and app/ as given code, with the
-# functions tools/starter/stubs.list names replaced by stubs (tools/starter/stubs.txt), and without
-# the robust/ and fast/ wings: the regions of the sources marked `// starter: begin NAME` ...
-# `// starter: end` (tools/starter/regions.awk). The kit is made from the very code rt tests.
+# functions tools/starter/stubs.list names replaced by stubs (tools/starter/stubs.txt, or
+# STUBS_TXT), and without the robust/ and fast/ wings: the statements marked `// robust/: ...`
+# or `// fast/: ...` left out, and the functions stubs.txt names replaced, found by name
+# (tools/starter/regions.awk). The kit is made from the very code rt tests; a name in stubs.txt
+# that rt no longer defines stops it.
 # --solved keeps rt's bodies in place of the stubs (the kit's checks must then all pass), and
 # writes no Gradescope bundle.
 # --reading writes the reading edition into DIR itself (`make reading`): solved, every step's
@@ -29,7 +31,8 @@ kit=$out/rt-starter
 # comments, and at most one line `hints formula|steps|none` (HINTS=... overrides it): how much
 # the stubs' comments say (stubs.txt). Anything else is refused, naming the line.
 list=${STUBS_LIST:-tools/starter/stubs.list}
-steps=$(sed -n 's/^@@ //p' tools/starter/stubs.txt | grep -v '^kit-' | tr '\n' ' ')
+stubs_txt=${STUBS_TXT:-tools/starter/stubs.txt}
+steps=$(sed -n 's/^@@ \([^ ]*\).*/\1/p' "$stubs_txt" | grep -v '^kit-' | tr '\n' ' ')
 parsed=$(awk -v steps=" $steps" -v file="$list" '
     { sub(/\r$/, ""); sub(/#.*/, "") }
     NF == 0 { next }
@@ -54,10 +57,11 @@ stubs=" ${parsed#* } "
 rm -rf "$kit"
 mkdir -p "$kit/app" "$kit/tests" "$kit/scenes"
 case $stubs in *" plane "*) case $stubs in *" cramer "*) plane=0 ;; *) plane=1 ;; esac ;; *) plane=0 ;; esac
+found=$kit/.found # (each name of stubs.txt that a source defines, a line each time)
+: >"$found"
 region() {
     awk -v stubs="$stubs" -v solved=$solved -v wings=$wings -v hints="$hints" -v plane=$plane \
-        -f tools/starter/regions.awk \
-        tools/starter/stubs.txt "$1" >"$kit/$1"
+        -v found="$found" -f tools/starter/regions.awk "$stubs_txt" "$1" >"$kit/$1"
 }
 for file in ray.h ray.cpp camera.cpp blur.cpp geometry.cpp shade.cpp smooth.cpp render.cpp render.h \
     path.cpp path_full.cpp path.h path_sampling.h numbers.h scene_*.cpp app/*.h app/*.cpp \
@@ -65,6 +69,26 @@ for file in ray.h ray.cpp camera.cpp blur.cpp geometry.cpp shade.cpp smooth.cpp 
     tests/kit_main.cpp; do
     region "$file"
 done
+# Each name a section gives must be defined once (else rt renamed it, and the kit would keep rt's
+# body or code that a kit leaves out), and a `mark` section's function must hold a mark.
+awk -v txt="$stubs_txt" 'FNR == NR { count[$0]++; next }
+    /^@@ / {
+        what = ($2 ~ /^kit-/ ? "section " : "step ") $2
+        for (i = 4; i <= NF; i++) {
+            n = count[$i] + 0
+            m = count[$i " mark"] + 0
+            if (n != 1)
+                why = n == 0 ? "which no source of the kit defines" : "defined " n " times"
+            else if ($3 == "mark" && m == 0)
+                why = "which has no statement marked // robust/: or // fast/:"
+            else
+                continue
+            print "tools/starter.sh: " txt ": " what " names " $i ", " why >"/dev/stderr"
+            bad = 1
+        }
+    }
+    END { exit bad }' "$found" "$stubs_txt" || exit 2
+rm -f "$found"
 if [ $wings = 1 ]; then
     mkdir -p "$kit/robust" "$kit/fast"
     cp robust/*.cpp robust/*.h "$kit/robust/" && cp fast/*.cpp fast/*.h "$kit/fast/"
