@@ -10,11 +10,11 @@
 #include <cmath>
 
 // The screen lies `distance` in front of the eye (at z = eye.z - distance), centred on the line
-// of sight, width p.width, with square pixels of size width / widthPixels; screen x grows to the
-// right and y grows up, while screenCoord.y counts pixel rows down from the top.
+// of sight, p.screenWidth wide, with square pixels of size screenWidth / widthPixels; screen x
+// grows to the right and y grows up, while screenCoord.y counts pixel rows down from the top.
 // Checked by TestGetRay (tests/test_handout.cpp).
 void GetRay(Perspective p, vec2 screenCoord, Ray *ray) {
-    real pixelSize = p.width / p.widthPixels;
+    real pixelSize = p.screenWidth / p.widthPixels;
     real x = (screenCoord.x - real(0.5) * p.widthPixels) * pixelSize;
     real y = (real(0.5) * p.heightPixels - screenCoord.y) * pixelSize;
     ray->origin = p.eye;            // handout: the pixel's point on the screen (see GetCameraRay)

@@ -384,18 +384,18 @@ void FindEyeRayHits(const Scene *scene, Methods methods, const Ray *rays, int co
 // starts inside a closed mesh (LeavingPoint; off a smooth mesh, out at the curved surface where
 // the way there is free: DeparturePoint); a triangle the ray plainly goes away from is then
 // passed over, which changes no answer and saves its test (StartLeaving).
-void LeaveSurface(const Scene *scene, const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray,
+void LeaveSurface(const Scene *scene, Methods methods, const RayHit *hit, vec3 dir, Ray *ray,
                   SelfHit *from) {
     *from = kNoSelfHit;
     ray->dir = dir;
     ray->origin = hit->point;
-    if (methods->selfHit == SELF_HIT_BOUND) { // robust/: rt's way; the handouts' two below
+    if (methods.selfHit == SELF_HIT_BOUND) { // robust/: rt's way; the handouts' two below
         ray->origin = DeparturePoint(scene, methods, hit, dir, dir); // robust: off, in from edges
         *from = StartLeaving(scene, hit, dir, dir);
         return;
     }
-    if (methods->selfHit == SELF_HIT_EPSILON) {
-        from->tMin = methods->epsilon / SafeLength(dir); // epsilon world units along the ray
+    if (methods.selfHit == SELF_HIT_EPSILON) {
+        from->tMin = methods.epsilon / SafeLength(dir); // epsilon world units along the ray
     } else {
         from->shape = hit->shape;
         from->index = hit->index;
@@ -407,30 +407,29 @@ void LeaveSurface(const Scene *scene, const RayHit *hit, vec3 dir, const Methods
 // blocker, however far away the light is. Under the bound, the origin moves to the light's side
 // (off a smooth mesh, to the side the hit was seen from: the light may lie behind the flat
 // triangle), and the pass-over is judged for the final direction.
-bool ShadowRay(const Scene *scene, const RayHit *hit, vec3 lightPosition, const Methods *methods,
-               Ray *ray, SelfHit *from) {
+bool ShadowRay(const Scene *scene, Methods methods, const RayHit *hit, vec3 lightPosition, Ray *ray,
+               SelfHit *from) {
     vec3 side = lightPosition - hit->point;
-    if (methods->selfHit == SELF_HIT_BOUND) { // robust/: rt's way, as in LeaveSurface
+    if (methods.selfHit == SELF_HIT_BOUND) { // robust/: rt's way, as in LeaveSurface
         ray->origin = DeparturePoint(scene, methods, hit, side, hit->normal); // robust: as above
         ray->dir = lightPosition - ray->origin;
         *from = StartLeaving(scene, hit, side, ray->dir);
         return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
     }
-    LeaveSurface(scene, hit, side, methods, ray, from);
+    LeaveSurface(scene, methods, hit, side, ray, from);
     ray->dir = lightPosition - ray->origin;
-    if (methods->selfHit == SELF_HIT_EPSILON)
-        from->tMin = methods->epsilon / SafeLength(ray->dir);
+    if (methods.selfHit == SELF_HIT_EPSILON)
+        from->tMin = methods.epsilon / SafeLength(ray->dir);
     return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
 }
 
 // The handouts' hard shadow: a light is visible from a hit when nothing lies between them, that
 // is, when the shadow ray (t = 1 at the light) meets no shape at t < 1.
 // Checked by TestShadow (tests/test_handout_light.cpp).
-bool LightVisible(const Scene *scene, const Methods *methods, const RayHit *hit,
-                  vec3 lightPosition) {
+bool LightVisible(const Scene *scene, Methods methods, const RayHit *hit, vec3 lightPosition) {
     Ray shadow;
     SelfHit from;
-    if (!ShadowRay(scene, hit, lightPosition, methods, &shadow, &from))
+    if (!ShadowRay(scene, methods, hit, lightPosition, &shadow, &from))
         return true; // the light is where the ray starts: nothing can be in between
-    return !AnyHitFrom(scene, *methods, &shadow, &from, 1);
+    return !AnyHitFrom(scene, methods, &shadow, &from, 1);
 }

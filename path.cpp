@@ -23,23 +23,23 @@
 bool MirrorOrGlass(const Path *path, const Ray *in, const RayHit *hit, const Material *m, real pick,
                    Ray *out, SelfHit *from, RayKind *kind) {
     const Scene *scene = path->scene;
-    const Methods *methods = &path->settings->methods;
+    Methods methods = path->settings->methods;
     vec3 d = SafeNormalize(in->dir), n = hit->normal, dir = Reflect(d, n);
     *kind = RAY_REFLECTION;
     if (pick < m->mirror) {
         vec2 disk = m->fuzz > 0 ? DiskPoint(&path->sample, path->bounce, SCATTER_DISK) : vec2{};
         if (m->fuzz > 0 && !FuzzReflect(d, n, m->fuzz, RandomUnitVector(disk), &dir))
             return false;
-        LeaveSurface(scene, hit, dir, methods, out, from);
+        LeaveSurface(scene, methods, hit, dir, out, from);
         return true;
     }
     real eta = hit->frontFace ? 1 / m->ior : m->ior, cosI = -Dot(d, n);
-    real reflectance = methods->fresnel == FRESNEL_SCHLICK ? SchlickReflectance(cosI, eta)
-                                                           : FresnelReflectance(cosI, eta);
+    real reflectance = methods.fresnel == FRESNEL_SCHLICK ? SchlickReflectance(cosI, eta)
+                                                          : FresnelReflectance(cosI, eta);
     vec3 refracted;
     bool reflect = (pick - m->mirror) < reflectance * (1 - m->mirror) || // (the same number,
                    !Refract(d, n, eta, &refracted);                      // past K)
-    LeaveSurface(scene, hit, reflect ? dir : refracted, methods, out, from);
+    LeaveSurface(scene, methods, hit, reflect ? dir : refracted, out, from);
     *kind = reflect ? RAY_REFLECTION : RAY_REFRACTION;
     return true;
 }
@@ -83,7 +83,7 @@ static color JournalShade(Path *path, const Ray *ray, bool found, const RayHit *
         toward = n;
     if (!(Dot(toward, hit->normal) > 0)) // into the flat triangle it stands for: absorbed
         return m->emit;
-    LeaveSurface(path->scene, hit, toward, &path->settings->methods, &next, &leaving);
+    LeaveSurface(path->scene, path->settings->methods, hit, toward, &next, &leaving);
     return m->emit + m->diffuse * JournalColor(path, &next, &leaving, RAY_DIFFUSE, number + 1);
 }
 

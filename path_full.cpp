@@ -23,13 +23,13 @@ static void Depart(Path *path, const RayHit *hit) {
     path->departs = path->settings->methods.selfHit == SELF_HIT_BOUND;
     if (path->departs)
         path->departure =
-            DeparturePoint(path->scene, &path->settings->methods, hit, hit->normal, hit->normal);
+            DeparturePoint(path->scene, path->settings->methods, hit, hit->normal, hit->normal);
 }
 
 // ShadowRay from the hit to `target`, from the departure point when there is one.
 static bool CastShadow(const Path *path, const RayHit *hit, vec3 target, Ray *ray, SelfHit *from) {
     if (!path->departs)
-        return ShadowRay(path->scene, hit, target, &path->settings->methods, ray, from);
+        return ShadowRay(path->scene, path->settings->methods, hit, target, ray, from);
     *ray = {path->departure, target - path->departure};
     *from = StartLeaving(path->scene, hit, hit->normal, ray->dir);
     return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;
@@ -64,7 +64,7 @@ const real kShortOfEmitter = real(0x1p-20);
 // rounding, on the very edge of e, as hidden; and under --self-hit skip, which skips the sphere a
 // ray leaves, a point on the inside of a glowing sphere would never see the rest of it.)
 static bool EmitterVisible(Path *path, const RayHit *hit, const Emitter *e, vec3 p) {
-    const Methods *methods = &path->settings->methods;
+    Methods methods = path->settings->methods;
     Ray shadow;
     SelfHit from;
     if (!CastShadow(path, hit, p, &shadow, &from))
@@ -73,7 +73,7 @@ static bool EmitterVisible(Path *path, const RayHit *hit, const Emitter *e, vec3
     int node = Record(RAY_SHADOW, &shadow, path->log);
     RayHit blocker;
     bool found =
-        FindNearestHitFrom(path->scene, *methods, &shadow, &from, 1 - kShortOfEmitter, &blocker);
+        FindNearestHitFrom(path->scene, methods, &shadow, &from, 1 - kShortOfEmitter, &blocker);
     bool visible = !found || (blocker.shape == e->shape && blocker.index == e->index);
     if (node >= 0) {
         RayNode *n = &(*path->log->tree)[node];
@@ -227,7 +227,7 @@ static bool Bounce(Path *path, const RayHit *hit, const Material *m, bool last) 
                     (method == SCATTER_COSINE ? rho : (cosTheta / (kPi * path->scatterPdf)) * rho);
     path->kind = RAY_DIFFUSE;
     if (!path->departs) // robust/: the else, from Depart's point
-        LeaveSurface(path->scene, hit, dir, &path->settings->methods, &path->ray, &path->from);
+        LeaveSurface(path->scene, path->settings->methods, hit, dir, &path->ray, &path->from);
     else
         path->ray = {path->departure, dir},
         path->from = StartLeaving(path->scene, hit, hit->normal, dir);

@@ -37,13 +37,14 @@ struct Ray {
     vec3 dir;
 };
 
-// The assignment handout's camera: the eye looks down -z at a screen `distance` away, `width`
-// world units wide, split into widthPixels x heightPixels square pixels (the handout's screen is
-// square; a non-square image keeps square pixels, so the screen is width*H/W high).
+// The assignment handout's camera: the eye looks down -z at a screen `distance` away,
+// screenWidth world units wide, split into widthPixels x heightPixels square pixels (the
+// handout's screen is square; a non-square image keeps square pixels, so the screen is
+// screenWidth * H / W high).
 struct Perspective {
     vec3 eye;
     real distance;
-    real width;
+    real screenWidth;
     int widthPixels;
     int heightPixels;
 };
@@ -58,18 +59,18 @@ enum CameraKind {
 
 struct Camera {
     CameraKind kind;
-    Perspective perspective; // CAMERA_PERSPECTIVE
-    vec3 eye;                // CAMERA_SCREEN: the eye e,
-    vec3 lowerLeft;          // the screen's lower-left corner l,
-    vec3 horizontal;         // its bottom edge h, from l to the lower-right corner,
-    vec3 vertical;           // and its left edge v, from l to the upper-left corner
-    vec3 toCorner;           // l - e, the corner seen from the eye (set by PlanRender): every
-                             // pixel's direction is built from it, never from l itself, so it
-                             // does not depend on how far the eye is from the origin
+    Perspective perspective;    // CAMERA_PERSPECTIVE
+    vec3 eye;                   // CAMERA_SCREEN: the eye e,
+    vec3 lowerLeft;             // the screen's lower-left corner l,
+    vec3 horizontal;            // its bottom edge h, from l to the lower-right corner,
+    vec3 vertical;              // and its left edge v, from l to the upper-left corner
+    vec3 toCorner;              // l - e, the corner seen from the eye (set by PlanRender): every
+                                // pixel's direction is built from it, never from l itself, so it
+                                // does not depend on how far the eye is from the origin
     vec3 lookFrom, lookAt, vup; // CAMERA_LOOKAT (the scene file's from, to and up)
-    real fovDegrees;         // CAMERA_LOOKAT: vertical field of view
-    bool fromScreen;         // the slides' GetRay: rays start at the pixel on the screen, with
-                             // unit length (set by PlanRender from the methods)
+    real fovDegrees;            // CAMERA_LOOKAT: vertical field of view
+    bool fromScreen;            // the slides' GetRay: rays start at the pixel on the screen, with
+                                // unit length (set by PlanRender from the methods)
     // CAMERA_LOOKAT's thin lens (Ray Tracing in One Weekend's defocus blur): rays start on a disk
     // of radius lensRadius around the eye, across the view, and meet on the plane in focus,
     // focusDistance in front of it (the book's focus_dist). A radius of 0 is the pinhole camera:
@@ -168,9 +169,9 @@ struct Scene {
     int width, height; // image size in pixels
     Camera camera;
     ShadingModel shading;
-    real ambient;     // the ambient intensity: the floor, or Phong's Ia
-    color background; // colour of a ray that hits nothing (looking straight down, under a sky)
-    bool sky = false; // the book's sky: background blended with skyUp by the ray's height
+    real ambientLight; // the ambient intensity: the floor, or Phong's Ia (`ambient` in a file)
+    color background;  // colour of a ray that hits nothing (looking straight down, under a sky)
+    bool sky = false;  // the book's sky: background blended with skyUp by the ray's height
     color skyUp = {0, 0, 0}; // (BackgroundColor, render.h)
     int depth;               // most rays in one chain, primary included
     std::vector<Material> materials;
@@ -332,19 +333,18 @@ void FindEyeRayHits(const Scene *scene, Methods methods, const Ray *rays, int co
 // the self-hit method: bound, from LeavingPoint (robust/robust.h), passing over the triangle it
 // leaves where PassesOver; epsilon, from the hit point, ignoring hits closer than
 // methods->epsilon; skip, from the hit point, ignoring the shape it leaves.
-void LeaveSurface(const Scene *scene, const RayHit *hit, vec3 dir, const Methods *methods, Ray *ray,
+void LeaveSurface(const Scene *scene, Methods methods, const RayHit *hit, vec3 dir, Ray *ray,
                   SelfHit *from);
 
 // The shadow ray from a hit to a light at lightPosition, leaving the surface as LeaveSurface
 // does, with t = 1 at the light, so a blocker is any hit in (from->tMin, 1). False if the light
 // is where the ray starts, where nothing can be in between.
-bool ShadowRay(const Scene *scene, const RayHit *hit, vec3 lightPosition, const Methods *methods,
-               Ray *ray, SelfHit *from);
+bool ShadowRay(const Scene *scene, Methods methods, const RayHit *hit, vec3 lightPosition, Ray *ray,
+               SelfHit *from);
 
 // The assignment's hard shadow: true if nothing lies between the hit and a light at
 // lightPosition (the shadow ray meets no shape at t < 1).
-bool LightVisible(const Scene *scene, const Methods *methods, const RayHit *hit,
-                  vec3 lightPosition);
+bool LightVisible(const Scene *scene, Methods methods, const RayHit *hit, vec3 lightPosition);
 
 // ---- smooth.cpp: the shading normal of a smooth mesh ----------------------------------------
 
@@ -378,8 +378,7 @@ inline vec3 SurfaceNormal(const Scene *scene, const RayHit *hit) {
 // the side `toward` points to (the side the hit was seen from, for a shadow ray): moved out to
 // where the curved surface would be (TerminatorOrigin) where the way there, and as far again,
 // meets no shape; else off the flat triangle, as LeavingPoint moves it.
-vec3 DeparturePoint(const Scene *scene, const Methods *methods, const RayHit *hit, vec3 dir,
-                    vec3 toward);
+vec3 DeparturePoint(const Scene *scene, Methods methods, const RayHit *hit, vec3 dir, vec3 toward);
 
 // ---- the seam: speed machinery that main may install (fast/) --------------------------------
 
@@ -391,9 +390,10 @@ bool SearchList(const Scene *scene, Methods methods, const Ray *ray, const SelfH
 // Another way to answer the searches above, bit for bit as SearchList answers, only faster: the
 // shapes in blocks tested several at a time, a bounding volume hierarchy over the triangles, a
 // pixel's eye rays tested together (fast/fast.h). main installs one in scene->accelerator; the
-// core calls it at two marked lines (Search, FindEyeRayHits) and never looks inside. `search` answers every search it is
-// given, as SearchList does (and runs SearchList itself where it cannot, as for the handouts'
-// methods); `eyeRays` answers every ray FindEyeRayHits is given, as its plain loop would.
+// core calls it at two marked lines (Search, FindEyeRayHits) and never looks inside. `search`
+// answers every search it is given, as SearchList does (and runs SearchList itself where it cannot,
+// as for the handouts' methods); `eyeRays` answers every ray FindEyeRayHits is given, as its plain
+// loop would.
 struct Accelerator {
     const void *layout; // what it searches (fast/: the committed scene)
     bool (*search)(const Accelerator *self, const Scene *scene, Methods methods, const Ray *ray,

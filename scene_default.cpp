@@ -13,7 +13,7 @@ void InitScene(Scene *scene) {
     scene->camera.kind = CAMERA_PERSPECTIVE;
     scene->camera.perspective = {{0, 0, 0}, 2, 2, 512, 512};
     scene->shading = SHADING_FLOOR;
-    scene->ambient = real(0.2);
+    scene->ambientLight = real(0.2);
     scene->background = {0, 0, 0};
     scene->depth = 10;
 }

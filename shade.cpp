@@ -57,15 +57,15 @@ struct Surface {
 // being recorded (--pixel) it becomes a node, with the nearest shape that blocks it.
 static void LogShadowRay(const ShadeContext *sh, const RayHit *hit, const Light *light,
                          bool visible) {
-    const Methods *methods = &sh->settings->methods;
+    Methods methods = sh->settings->methods;
     sh->log->stats.shadow++;
     if (sh->settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads it
         sh->log->surfaces = MixSurface(sh->log->surfaces, !visible);
     Ray shadow;
     SelfHit from;
-    if (sh->log->tree && ShadowRay(sh->scene, hit, light->position, methods, &shadow, &from)) {
+    if (sh->log->tree && ShadowRay(sh->scene, methods, hit, light->position, &shadow, &from)) {
         RayNode *n = &(*sh->log->tree)[RecordRay(RAY_SHADOW, &shadow, sh->log)];
-        n->found = FindNearestHitFrom(sh->scene, *methods, &shadow, &from, 1, &n->record);
+        n->found = FindNearestHitFrom(sh->scene, methods, &shadow, &from, 1, &n->record);
         n->light = visible ? light->intensity : color{0, 0, 0};
     }
 }
@@ -75,7 +75,7 @@ static void LogShadowRay(const ShadeContext *sh, const RayHit *hit, const Light 
 static bool ShadowTest(const ShadeContext *sh, const RayHit *hit, const Light *light) {
     if (!sh->settings->effects.shadows) // (no shape could stand in the way)
         return true;
-    bool visible = LightVisible(sh->scene, &sh->settings->methods, hit, light->position);
+    bool visible = LightVisible(sh->scene, sh->settings->methods, hit, light->position);
     LogShadowRay(sh, hit, light, visible);
     return visible;
 }
@@ -88,7 +88,7 @@ static bool ShadowTest(const ShadeContext *sh, const RayHit *hit, const Light *l
 // Checked by TestFloor (tests/test_handout_light.cpp).
 static color FloorColor(const ShadeContext *sh, const Surface *s) {
     const RayHit *hit = s->hit;
-    real a = sh->scene->ambient; // handout: kd * max(ambient, N.L)
+    real a = sh->scene->ambientLight; // handout: kd * max(ambient, N.L)
     if (!LightsCanShow(sh->scene, s->m, sh->settings->effects.lightSum))
         return a * s->m->diffuse;
     vec3 n = SurfaceNormal(sh->scene, hit);
@@ -113,7 +113,7 @@ static color FloorColor(const ShadeContext *sh, const Surface *s) {
 // Checked by TestPhong (tests/test_handout_light.cpp).
 static color PhongColor(const ShadeContext *sh, const Surface *s) {
     const Material *m = s->m;
-    color result = sh->scene->ambient * m->ambient;
+    color result = sh->scene->ambientLight * m->ambient;
     vec3 n = SurfaceNormal(sh->scene, s->hit), v = -SafeNormalize(s->ray->dir);
     bool specular = sh->settings->effects.specular && m->specular > 0;
     if (!LightsCanShow(sh->scene, m, sh->settings->effects.lightSum))
@@ -230,7 +230,7 @@ static color FollowRay(const ShadeContext *sh, const Surface *s, RayKind kind, v
         return {0, 0, 0};
     Ray ray;
     SelfHit from;
-    LeaveSurface(sh->scene, s->hit, dir, &sh->settings->methods, &ray, &from);
+    LeaveSurface(sh->scene, sh->settings->methods, s->hit, dir, &ray, &from);
     return TraceRay(sh->scene, sh->settings, kind, &ray, &from, next, sh->log);
 }
 
@@ -333,7 +333,7 @@ bool LightsCanShow(const Scene *scene, const Material *m, color lightSum) {
     if (!(m->mirror < 1) || m->ior > 0)
         return false;
     color kd = m->diffuse;
-    real a = scene->ambient;
+    real a = scene->ambientLight;
     if (scene->shading == SHADING_FLOOR)
         return (kd.x > 0 && a < lightSum.x) || (kd.y > 0 && a < lightSum.y) ||
                (kd.z > 0 && a < lightSum.z);

@@ -45,8 +45,7 @@ vec3 SmoothNormal(const Scene *scene, const RayHit *hit) {
     return hit->frontFace ? n : -n;
 }
 
-vec3 DeparturePoint(const Scene *scene, const Methods *methods, const RayHit *hit, vec3 dir,
-                    vec3 toward) {
+vec3 DeparturePoint(const Scene *scene, Methods methods, const RayHit *hit, vec3 dir, vec3 toward) {
     if (!HasCornerNormals(scene, hit))
         return LeavingPoint(scene, hit, dir);
     // robust: never behind the face it leaves, whatever the ray's direction; a ray toward a light
@@ -58,5 +57,5 @@ vec3 DeparturePoint(const Scene *scene, const Methods *methods, const RayHit *hi
     // beyond it (so no shape lies within rounding of where the ray starts): else the ray would
     // start past a wall, a floor or another part of the mesh that the hit itself cannot see
     Ray way = {flat, moved - flat};
-    return AnyHit(scene, *methods, &way, 0, 2) ? flat : moved;
+    return AnyHit(scene, methods, &way, 0, 2) ? flat : moved;
 }

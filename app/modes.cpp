@@ -164,7 +164,7 @@ std::string OneColourWarning(const Scene *scene) {
     bool anyEmit = false; // (a material that emits, whether or not a shape uses it)
     for (const Material &m : scene->materials)
         anyEmit = anyEmit || Emits(&m);
-    bool unlit = scene->shading == SHADING_PATH ? !anyEmit : scene->ambient == 0;
+    bool unlit = scene->shading == SHADING_PATH ? !anyEmit : scene->ambientLight == 0;
     bool shines = false; // (a light of intensity 0 0 0 lights nothing)
     for (const Light &light : scene->lights)
         shines = shines || Shines(&light);

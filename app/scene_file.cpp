@@ -107,7 +107,7 @@ static bool ReadSetting(const Statement *st, Scene *scene, Declared *declared, s
     if (k == "ambient") {
         if (!Once(st, &declared->ambient, error) || !Numbers(st, 1, 1, 2, v, error))
             return false;
-        scene->ambient = v[0];
+        scene->ambientLight = v[0];
         return (v[0] >= 0 && v[0] <= 1) ||
                Fail(st, "ambient " + st->tokens[1] + ": must be in [0, 1]", error);
     }

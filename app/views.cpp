@@ -52,7 +52,7 @@ static int LightState(const Scene *scene, const RenderSettings *settings, const 
         return -1;
     Ray shadow;
     SelfHit from;
-    if (!ShadowRay(scene, hit, light->position, &settings->methods, &shadow, &from))
+    if (!ShadowRay(scene, settings->methods, hit, light->position, &shadow, &from))
         return 1; // the light is at the point itself: nothing between them
     stats->shadow++;
     return AnyHitFrom(scene, settings->methods, &shadow, &from, 1) ? 0 : 1;

@@ -252,12 +252,11 @@ const char *KernelName() {
 // Whether the layout answers for this search: made from this very scene (not a copy), which
 // still holds as many shapes as it did, and the robust sphere and triangle tests, the only ones
 // the kernel has. (The handouts' methods are the plain loop, as written.)
-static const SceneLayout *Answering(const Accelerator *self, const Scene *scene,
-                                    const Methods *methods) {
+static const SceneLayout *Answering(const Accelerator *self, const Scene *scene, Methods methods) {
     const SceneLayout *layout = (const SceneLayout *)self->layout;
     bool same = layout->scene == scene && layout->triangleCount == scene->triangles.size() &&
                 layout->sphereCount == scene->spheres.size();
-    bool robust = methods->sphere == SPHERE_STABLE && methods->triangle == TRIANGLE_WATERTIGHT;
+    bool robust = methods.sphere == SPHERE_STABLE && methods.triangle == TRIANGLE_WATERTIGHT;
     return same && robust ? layout : nullptr;
 }
 
@@ -265,7 +264,7 @@ static const SceneLayout *Answering(const Accelerator *self, const Scene *scene,
 // then the triangles, t scaled back; the blocks and the BVH in place of the list.
 bool SearchLayout(const Accelerator *self, const Scene *scene, Methods methods, const Ray *given,
                   const SelfHit *from, real tMax, bool anyHit, RayHit *hit) {
-    const SceneLayout *layout = Answering(self, scene, &methods);
+    const SceneLayout *layout = Answering(self, scene, methods);
     if (!layout)
         return SearchList(scene, methods, given, from, tMax, anyHit, hit);
     ScaledRay s;
@@ -309,7 +308,7 @@ static bool HitPacket(const Scene *scene, const SceneLayout *layout, const Ray *
 
 void SearchEyeRays(const Accelerator *self, const Scene *scene, Methods methods, const Ray *rays,
                    int count, RayHit *hits, bool *found, bool *answered) {
-    const SceneLayout *layout = Answering(self, scene, &methods);
+    const SceneLayout *layout = Answering(self, scene, methods);
     for (int first = 0; layout && first < count; first += kLanes) { // a packet is kLanes rays
         int n = count - first < kLanes ? count - first : kLanes;
         if (!PacketPays(layout, n) ||

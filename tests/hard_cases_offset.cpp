@@ -26,7 +26,7 @@ static int SelfShadowed(const Suite *s, const Triangle &ground, vec3 eye, vec3 l
         Ray shadow;
         SelfHit start;
         hit.index = 0;
-        acne += ShadowRay(&scene, &hit, light, &kRobustMethods, &shadow, &start) &&
+        acne += ShadowRay(&scene, kRobustMethods, &hit, light, &shadow, &start) &&
                 s->triangle(&ground, &shadow, 0, 1, &hit);
     }
     return acne;
@@ -75,7 +75,7 @@ void OffsetRows(Suite *s) {
         SelfHit start;
         Scene scene = OneTriangle(ground);
         p.index = 0;
-        found = found && ShadowRay(&scene, &p, light, &kRobustMethods, &shadow, &start);
+        found = found && ShadowRay(&scene, kRobustMethods, &p, light, &shadow, &start);
         bool ballShadows = found && s->sphere(&ball, &shadow, 0, 1, &blocker);
         bool sheetShadows = found && s->triangle(&sheet, &shadow, 0, 1, &blocker);
         Report(s, "OFF-3", ballShadows && sheetShadows,
@@ -98,7 +98,7 @@ void OffsetRows(Suite *s) {
                 SelfHit start;
                 rays++;
                 Scene scene; // (a sphere's ray leaves from its own point alone)
-                acne += ShadowRay(&scene, &hit, light, &kRobustMethods, &shadow, &start) &&
+                acne += ShadowRay(&scene, kRobustMethods, &hit, light, &shadow, &start) &&
                         s->sphere(&ball, &shadow, 0, 1, &again);
             }
         Report(s, "OFF-4", acne == 0 && rays > 1000,

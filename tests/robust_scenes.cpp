@@ -136,7 +136,7 @@ Scene TransformedScene(const Scene &original, real scale, vec3 shift) {
         l.position = move(l.position);
     s.camera.perspective.eye = move(s.camera.perspective.eye);
     s.camera.perspective.distance *= scale;
-    s.camera.perspective.width *= scale;
+    s.camera.perspective.screenWidth *= scale;
     return s;
 }
 
@@ -176,7 +176,7 @@ Scene LeakScene(bool mirrorWalls, vec3 eye, vec3 view, int size) {
     InitScene(&scene);
     scene.width = scene.height = size;
     scene.shading = mirrorWalls ? SHADING_FLOOR : SHADING_PATH;
-    scene.ambient = 0;
+    scene.ambientLight = 0;
     scene.background = {0, 1, 0};
     scene.depth = 100;
     Material wall = {"wall", {1, 1, 1}, {1, 1, 1}, 0, 1, mirrorWalls ? real(1) : real(0),

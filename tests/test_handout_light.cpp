@@ -24,7 +24,7 @@ void TestShadow() {
     Scene scene;
     RayHit floor;
     ShadowScene(&scene, &floor);
-    const Methods *m = &kHandoutMethods;
+    Methods m = kHandoutMethods;
     bool visible = LightVisible(&scene, m, &floor, {0, 4, 0});
     ADVISE(!visible,
            "the ball at (0, 2, 0) hides the light at (0, 4, 0) from the floor at (0, 0, 0)",
@@ -87,8 +87,8 @@ void TestFloor() {
     ADVISE(Near(c, {1, 0.5, 0.25}),
            "lit from straight above, N.L = 1: the colour kd = (1, 0.5, 0.25)", "you give " + Vec(c),
            Near(c, {0.2, 0.1, 0.05}) ? "the light is missing: add I (N.L) for a visible light"
-           : Near(c, {4, 2, 1})      ? "L is not of length 1: N.L with L = (light - P) / |light - P|"
-                                     : "kd max(ambient, N.L), with L of length 1");
+           : Near(c, {4, 2, 1}) ? "L is not of length 1: N.L with L = (light - P) / |light - P|"
+                                : "kd max(ambient, N.L), with L of length 1");
     c = FloorSeen({{{4 * std::sqrt(real(3)), 4, 0}, white}}); // 60 degrees: N.L = 0.5
     ADVISE(Near(c, {0.5, 0.25, 0.125}), "lit at 60 degrees, N.L = 0.5: kd 0.5 = (0.5, 0.25, 0.125)",
            "you give " + Vec(c), "N.L with L normalised: (N.L) / |L|");
@@ -101,10 +101,11 @@ void TestFloor() {
            "lit from below the floor: only the ambient floor, (0.2, 0.1, 0.05)",
            "you give " + Vec(c), "a light behind the surface (N.L < 0) adds nothing");
     c = FloorSeen({{{0, 4, 0}, white}, {{0, -4, 0}, white}});
-    ADVISE(Near(c, {1, 0.5, 0.25}),
-           "lit from above and from below: the light below adds nothing, kd = (1, 0.5, 0.25)",
-           "you give " + Vec(c),
-           "a light behind the surface takes light away: skip it when N.L <= 0 (or clamp N.L at 0)");
+    ADVISE(
+        Near(c, {1, 0.5, 0.25}),
+        "lit from above and from below: the light below adds nothing, kd = (1, 0.5, 0.25)",
+        "you give " + Vec(c),
+        "a light behind the surface takes light away: skip it when N.L <= 0 (or clamp N.L at 0)");
 }
 
 // ---- mirrors -----------------------------------------------------------------------------------
@@ -139,10 +140,10 @@ static uint64_t MirrorChain(int depth) {
 
 void TestDepth() {
     uint64_t n = MirrorChain(10);
-    std::string cause = n == 0   ? "no reflection at all: the depth check stops the eye's ray's "
-                                   "reflection (the eye's ray is number 1)"
-                        : n == 8 ? "one ray short: the eye's ray is the first of `depth`, so 9 "
-                                   "reflections follow it (if next.number > depth, black)"
+    std::string cause = n == 0    ? "no reflection at all: the depth check stops the eye's ray's "
+                                    "reflection (the eye's ray is number 1)"
+                        : n == 8  ? "one ray short: the eye's ray is the first of `depth`, so 9 "
+                                    "reflections follow it (if next.number > depth, black)"
                         : n == 10 ? "one ray too many: the eye's ray counts as the first of `depth`"
                                   : "at most `depth` rays in a chain: if next.number > depth, "
                                     "return black";
@@ -163,7 +164,7 @@ static color PhongSeen(vec3 light, vec3 eye, bool blocker) {
     Scene scene;
     InitScene(&scene);
     scene.shading = SHADING_PHONG;
-    scene.ambient = 0.1;
+    scene.ambientLight = 0.1;
     Material m = Plain({0.5, 0.5, 0.5});
     m.ambient = {1, 1, 1}, m.specular = 0.5, m.shininess = 1;
     scene.materials = {m};
@@ -180,15 +181,17 @@ void TestPhong() {
     ADVISE(Near(c, {1.1, 1.1, 1.1}),
            "Phong, light and eye straight above: ka Ia + kd + ks = 0.1 + 0.5 + 0.5 = 1.1",
            "you give " + Vec(c),
-           Near(c, {0.85, 0.85, 0.85}) ? "the highlight is white: ks (R.V)^n adds to each channel, "
-                                         "not times kd"
-                                       : "ka Ia + I (kd (N.L) + ks max(0, R.V)^n), R = 2 (N.L) N - L");
+           Near(c, {0.85, 0.85, 0.85})
+               ? "the highlight is white: ks (R.V)^n adds to each channel, "
+                 "not times kd"
+               : "ka Ia + I (kd (N.L) + ks max(0, R.V)^n), R = 2 (N.L) N - L");
     real s = std::sqrt(real(0.5)); // light 45 degrees to the left, eye 45 degrees to the right
     c = PhongSeen({-4, 4, 0}, {4, 4, 0}, false);
     real want = real(0.1) + real(0.5) * s + real(0.5); // R = V: (R.V)^n = 1
     ADVISE(Near(c, {want, want, want}),
            "light at 45 degrees on one side, eye at 45 on the other: R = V, the full highlight, "
-           "0.1 + 0.5 (0.707) + 0.5 = " + Num(want),
+           "0.1 + 0.5 (0.707) + 0.5 = " +
+               Num(want),
            "you give " + Vec(c),
            Near(c.x, real(0.1) + real(0.5) * s) ? "no highlight: V goes from the point toward the "
                                                   "eye, V = -normalize(D)"
@@ -236,7 +239,8 @@ void TestClamp() {
                   {-0.3, 0, "below 0 is 0: clamp to [0, 1] first"}};
     for (const auto &k : kCases) {
         int b = ToByte(k.c);
-        ADVISE(b == k.byte, "the colour " + Num(k.c) + " becomes the byte " + std::to_string(k.byte),
+        ADVISE(b == k.byte,
+               "the colour " + Num(k.c) + " becomes the byte " + std::to_string(k.byte),
                "you give " + std::to_string(b), k.cause);
     }
 }

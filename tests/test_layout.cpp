@@ -52,7 +52,7 @@ static bool SameAnswers(const Layouts *l, const Ray *ray, real tMin, real tMax) 
     skip.selfHit = SELF_HIT_SKIP;
     Ray next;
     SelfHit start;
-    LeaveSurface(scenes[0], &hits[0], Reflect(ray->dir, hits[0].normal), &skip, &next, &start);
+    LeaveSurface(scenes[0], skip, &hits[0], Reflect(ray->dir, hits[0].normal), &next, &start);
     RayHit again[kWays];
     bool foundAgain[kWays];
     for (int k = 0; k < kWays; k++)
@@ -62,7 +62,7 @@ static bool SameAnswers(const Layouts *l, const Ray *ray, real tMin, real tMax) 
             return false;
     // The bound method, which passes over the triangle the ray leaves where it goes plainly away
     // from it (PassesOver): the same in every layout
-    LeaveSurface(scenes[0], &hits[0], Reflect(ray->dir, hits[0].normal), &kRobustMethods, &next,
+    LeaveSurface(scenes[0], kRobustMethods, &hits[0], Reflect(ray->dir, hits[0].normal), &next,
                  &start);
     for (int k = 0; k < kWays; k++)
         foundAgain[k] =
@@ -96,7 +96,7 @@ static int PassOverDifferences(const Scene &scene, vec3 centre, real spread, int
         for (vec3 dir : {Reflect(ray.dir, hit.normal), ray.dir}) {
             Ray next;
             SelfHit start;
-            LeaveSurface(&scene, &hit, dir, &kRobustMethods, &next, &start);
+            LeaveSurface(&scene, kRobustMethods, &hit, dir, &next, &start);
             if (start.index < 0)
                 continue;
             ++*passed;

@@ -130,7 +130,7 @@ static void TestEpsilonLosesSmallShadows() {
         vec3 target = {real(0.9) * r, 0, 0}, from = {1, real(0.1) * r, 0};
         Ray ray = {from, target - from};
         color c = TraceRay(&s, &settings, RAY_PRIMARY, &ray, &kNoSelfHit, RayChain{1, 1}, &log);
-        shadowed[k] = std::fabs(c.x - s.ambient) < real(1e-3);
+        shadowed[k] = std::fabs(c.x - s.ambientLight) < real(1e-3);
     }
     CHECK(shadowed[0] && !shadowed[1],
           "beside a ball of radius 3e-5: the bound offset keeps its shadow, epsilon 1e-4 loses it");
@@ -189,7 +189,7 @@ static void TestSkipPassesOverOneShape() {
         from.normal = {0, 0, 1}, from.pointError = {0, 0, 0};
         Ray ray;
         SelfHit start;
-        LeaveSurface(&one, &from, {0, 0, -1}, &skip, &ray, &start);
+        LeaveSurface(&one, skip, &from, {0, 0, -1}, &ray, &start);
         RayHit hit;
         bool found = FindNearestHitFrom(&one, skip, &ray, &start, kInfinity, &hit);
         CHECK(found && hit.shape == kind && hit.index == 0 && hit.t > 7,

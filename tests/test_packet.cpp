@@ -34,7 +34,7 @@ static void AskShadows(const Scene *committed, const Scene *plain, const RayHit 
     for (int r = 0; r < count; r++) {
         vec3 light = hits[r].point + SafeLength(hits[r].point) * vec3{1, 2, 3} + vec3{1, 2, 3};
         if (found[r] &&
-            ShadowRay(committed, &hits[r], light, &kRobustMethods, &rays[n], &starts[n])) {
+            ShadowRay(committed, kRobustMethods, &hits[r], light, &rays[n], &starts[n])) {
             skipping[n] = {hits[r].point, rays[n].dir};
             skips[n] = {real(0.25), hits[r].shape, hits[r].index};
             n++;

@@ -215,7 +215,7 @@ static void TestSceneVariations() {
     Scene tiny;
     CHECK(ParseSceneText("ambient 0e-999\nbackground 0.000 -0.0e-400 0\n", "z.scene", &tiny,
                          &error) &&
-              tiny.ambient == 0,
+              tiny.ambientLight == 0,
           "zeros written with an exponent are 0, not numbers too small (" + error + ")");
     CHECK(ParseSceneText("material m\ntriangle " + corners + " m\n", "t.scene", &tiny, &error) &&
               tiny.warnings.empty(),
@@ -253,7 +253,7 @@ static void TestSceneVariations() {
     CHECK(ParseSceneText("size 100\n", "s.scene", &square, &error) && square.width == 100 &&
               square.height == 100,
           "size 100: a square image of 100 x 100, as --size 100 makes one");
-    CHECK_NEAR(scene.ambient, 0.2, kRelTol, "ambient +2e-1 is 0.2");
+    CHECK_NEAR(scene.ambientLight, 0.2, kRelTol, "ambient +2e-1 is 0.2");
     const Material &m = scene.materials[0];
     CHECK(m.diffuse.x == real(0.5) && m.diffuse.y == 1 && m.diffuse.z == 0 &&
               m.specular == real(0.25) && m.shininess == 10 && m.mirror == real(0.5) &&
@@ -269,8 +269,8 @@ static void TestSceneVariations() {
     // An empty file is a valid scene: the defaults of the README's scene format
     ok = ParseSceneText("", "e.scene", &scene, &error);
     CHECK(ok && scene.width == 512 && scene.camera.kind == CAMERA_PERSPECTIVE &&
-              scene.camera.perspective.distance == 2 && scene.camera.perspective.width == 2 &&
-              scene.depth == 10 && scene.ambient == real(0.2) && scene.spheres.empty(),
+              scene.camera.perspective.distance == 2 && scene.camera.perspective.screenWidth == 2 &&
+              scene.depth == 10 && scene.ambientLight == real(0.2) && scene.spheres.empty(),
           "an empty scene file: 512 x 512, camera perspective 0 0 0 2 2, depth 10");
 }
 
@@ -329,7 +329,7 @@ static void TestCameras() {
 
 static bool SameScene(const Scene &a, const Scene &b) {
     bool same = a.width == b.width && a.height == b.height && a.depth == b.depth &&
-                a.ambient == b.ambient && a.shading == b.shading &&
+                a.ambientLight == b.ambientLight && a.shading == b.shading &&
                 a.materials.size() == b.materials.size() && a.spheres.size() == b.spheres.size() &&
                 a.triangles.size() == b.triangles.size() && a.lights.size() == b.lights.size();
     for (size_t k = 0; same && k < a.triangles.size(); k++) {
