@@ -17,10 +17,13 @@
 //                                  mirrors, glass, at most `depth` rays
 //   Reflect, Refract               the mirror direction; Snell's law         shade.cpp
 //   TracePath                      light that bounces (the journal)          path.cpp
-// The rest is rt's own: settings, sampling, the robust steps beyond the handouts, and the seam.
+// The rest is rt's own: settings, sampling (a pixel's eye rays go GetRay, then TraceEyeRays,
+// render.cpp), the robust steps beyond the handouts, and the seam.
 // Beside this core, by role: robust/ (the robust triangle test and the rescaling of rays, called
-// at marked lines), fast/ (speed machinery, which main installs behind one seam: Accelerator,
-// below) and app/ (the command line, files, probes). The core includes none of fast/ and app/.
+// at lines marked `// robust/:`), fast/ (speed machinery, which main installs behind one seam:
+// Accelerator, below; lines marked `// fast/:`) and app/ (the command line, files, probes). The
+// core includes none of fast/ and app/. To read the core without them: `make reading` writes it,
+// solved, to build/reading/; to step through the plain loop in a debugger, `./ray --layout plain`.
 #pragma once
 
 #include "numbers.h"

@@ -246,6 +246,14 @@ static void TestTriangle(TriangleTest test, const TriangleAdvice *a) {
            Found(found, hit.t), a->inside);
 }
 
+// The handout's numbers for TestTriangle's first check: a = (-1,-1,-3), b = (1,-1,-3),
+// c = (0,1,-3), e = (0,0,0), d = (0,0,-1) give A = -2, B = 0, C = 0, D = -1, E = -2, F = 0,
+// G = 0, H = 0, I = -1, J = -1, K = -1, L = -3; then EI - HF = 2, GF - DI = -1, DH - EG = 0,
+// M = A (EI - HF) + B (GF - DI) + C (DH - EG) = -4; AK - JB = 2, JC - AL = -6, BL - KC = 0,
+// t = -(F (AK - JB) + E (JC - AL) + D (BL - KC)) / M = -12 / -4 = 3,
+// gamma = (I (AK - JB) + H (JC - AL) + G (BL - KC)) / M = -2 / -4 = 1/2,
+// beta = (J (EI - HF) + K (GF - DI) + L (DH - EG)) / M = -1 / -4 = 1/4: the point a + beta (b - a)
+// + gamma (c - a) = (0, 0, -3), inside (beta, gamma >= 0, beta + gamma <= 1).
 static void TestCramer() { TestTriangle(IntersectTriangleCramer, &kCramer); }
 static void TestPlane() { TestTriangle(IntersectTrianglePlane, &kPlane); }
 
