@@ -58,11 +58,11 @@ warning=$(cd "$kit" && ./ray -o "$work/first.png" 2>&1)
 printf '%s\n' "$warning" | grep -q "the stubs are not written yet"
 check $? "the first day's warning speaks of the stubs: $warning"
 grep -q "B = 2 d.(o - c)" "$kit/geometry.cpp" && ! grep -q "sqrt(B^2 - 4AC)" "$kit/geometry.cpp" &&
-    ! grep -q "AnyHitFrom(scene, \*methods, &ray" "$kit/geometry.cpp"
+    ! grep -q "AnyHitFrom(scene, methods, &ray" "$kit/geometry.cpp"
 check $? "by default a stub gives the handout's formula, not the code (hints formula)"
 HINTS=steps sh tools/starter.sh "$work/steps" >/dev/null 2>&1
 grep -q "sqrt(B^2 - 4AC)" "$work/steps/rt-starter/geometry.cpp" &&
-    grep -q "AnyHitFrom(scene, \*methods, &ray" "$work/steps/rt-starter/geometry.cpp"
+    grep -q "AnyHitFrom(scene, methods, &ray" "$work/steps/rt-starter/geometry.cpp"
 check $? "HINTS=steps gives the steps, call by call"
 HINTS=none sh tools/starter.sh "$work/none" >/dev/null 2>&1
 grep -q "Your code: the slide's sphere." "$work/none/rt-starter/geometry.cpp" &&
