@@ -131,6 +131,12 @@ diff -r -x README.md -x stubs.list -x grade -x references -x .github -x build -x
 check $? "the reading edition is the solved kit's code: $(head -5 "$work/reading.diff")"
 [ ! -e "$work/reading/grade" ] && grep -q "reading edition" "$work/reading/README.md"
 check $? "the reading edition has its own README and no grader"
+missing=""
+for name in $(grep -o '`[A-Z][A-Za-z]*`' "$work/reading/README.md" | tr -d '`' | sort -u); do
+    grep -q "^[A-Za-z].*[ *]$name(" "$work/reading"/*.cpp "$work/reading"/*.h || missing="$missing $name"
+done
+[ -z "$missing" ]
+check $? "every function the reading edition's README names is defined in it:$missing"
 
 # Each classic bug written into a solved kit (tests/kit_bugs.txt) fails a check of its own step
 # with that step's advice, and no check of an earlier step; and the grader names it on its scene.
