@@ -238,34 +238,40 @@ static color AdaptivePathPixel(const Scene *scene, const RenderSettings *setting
     return (real(1) / n) * sum;
 }
 
+// n samples of pixel (i, j) on the grid (jittered in their cells but for n = 1, whose one sample
+// is the pixel's centre: the handout's ray), a few at a time, their rays traced together.
+static color SampledPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
+                          TraceLog *log) {
+    int n = settings->samplesPerPixel;
+    bool jitter = settings->sampling != SAMPLES_GRID && n > 1;
+    GridCell cell = FindCell(0, n);
+    color sum = {0, 0, 0};
+    for (int first = 0; first < n; first += kEyeRaysTogether) {
+        int count = std::min(kEyeRaysTogether, n - first);
+        Ray rays[kEyeRaysTogether];
+        color colours[kEyeRaysTogether];
+        for (int s = first; s < first + count; s++) {
+            cell = NextCell(&cell, s, n);
+            vec2 p = jitter ? JitterPosition(i, j, &cell, s, 0) : GridPosition(i, j, &cell, s);
+            GetCameraRay(&settings->camera, settings->width, settings->height, p, &rays[s - first]);
+        }
+        TraceEyeRays(scene, settings, rays, count, i, j, first, log, colours);
+        for (int k = 0; k < count; k++)
+            sum = sum + colours[k];
+    }
+    return (real(1) / n) * sum;
+}
+
 color RenderPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
                   RayStats *stats) {
     TraceLog log = {RayStats{}, nullptr, -1, 0};
-    int n = settings->samplesPerPixel;
-    color result = {0, 0, 0};
-    if (settings->sampling == SAMPLES_ADAPTIVE && scene->shading == SHADING_PATH) {
+    color result;
+    if (settings->sampling == SAMPLES_ADAPTIVE && scene->shading == SHADING_PATH)
         result = AdaptivePathPixel(scene, settings, i, j, &log);
-    } else if (settings->sampling == SAMPLES_ADAPTIVE && n > 5) {
+    else if (settings->sampling == SAMPLES_ADAPTIVE && settings->samplesPerPixel > 5)
         result = AdaptivePixel(scene, settings, i, j, &log);
-    } else { // n samples, a few at a time; one sample is the pixel's centre (the handout's ray)
-        bool jitter = settings->sampling != SAMPLES_GRID && n > 1;
-        GridCell cell = FindCell(0, n);
-        for (int first = 0; first < n; first += kEyeRaysTogether) { // their rays together
-            int count = std::min(kEyeRaysTogether, n - first);
-            Ray rays[kEyeRaysTogether];
-            color colours[kEyeRaysTogether];
-            for (int s = first; s < first + count; s++) {
-                cell = NextCell(&cell, s, n);
-                vec2 p = jitter ? JitterPosition(i, j, &cell, s, 0) : GridPosition(i, j, &cell, s);
-                GetCameraRay(&settings->camera, settings->width, settings->height, p,
-                             &rays[s - first]);
-            }
-            TraceEyeRays(scene, settings, rays, count, i, j, first, &log, colours);
-            for (int k = 0; k < count; k++)
-                result = result + colours[k];
-        }
-        result = (real(1) / n) * result;
-    }
+    else
+        result = SampledPixel(scene, settings, i, j, &log);
     AddStats(&log.stats, stats);
     return result;
 }
