@@ -287,8 +287,8 @@ static GradingScene Phong(Rng *r) {
            "# sits where R, the light's mirror direction, meets V, toward the eye, and is gone\n"
            "# where the light is hidden.\n",
            64, 64, "phong", 0.1);
-    // The highlight is where N halves the way to the light and to the eye; the dark ball sits
-    // 40% of the way from there to the light, a little to the side, so it hides half of it.
+    // The highlight is where N halves the way to the light and to the eye; the dark ball sits on
+    // the way from there to the light, a little to the side, so that it hides half of it.
     double ly = Vary(r, 6, 0.5), toLight = std::sqrt(ly * ly + 36);
     double nx = 0, ny = ly / toLight, nz = 6 / toLight + 1, n = std::sqrt(ny * ny + nz * nz);
     double px = 2 * nx / n, py = 2 * ny / n, pz = -6 + 2 * nz / n;
