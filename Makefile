@@ -86,13 +86,16 @@ build/float/run_tests: $(call objs,build/float/tests,$(PER_BUILD_TESTS)) $(SHARE
 # defined before the first rule that names them, as make reads a rule's prerequisites at once.
 REFERENCES = $(addprefix build/references/,$(addsuffix .png,$(notdir $(basename $(wildcard scenes/*.scene)))))
 test: all build/double/run_tests build/float/run_tests build/tiny build/grader build/grade-set $(REFERENCES)
-	@CXX="$(CXX)" RT_TESTS="$(RT_TESTS)" sh tests/run.sh build/double/run_tests build/float/run_tests tests/recipe.sh \
+	@CXX="$(CXX)" sh tests/run.sh build/double/run_tests build/float/run_tests tests/recipe.sh \
 	    tests/grade.sh tests/starter.sh tests/class.sh
 
 check: test
 
-# `make test RT_TESTS=quick` (CI's builds with other compilers): the kit's bugs and the class are
-# checked by the first build only; every other test runs.
+# The checks of this build's own code, the test programs in double and float, without the kit's,
+# the grader's and the class's suites (CI's builds with other compilers run these and compare
+# their images; the suites check scripts and a kit, which the first build has checked).
+check-programs: all build/double/run_tests build/float/run_tests
+	@sh tests/run.sh build/double/run_tests build/float/run_tests
 
 # The student's quicker loop: the checks of the handouts' steps (hits, shading, the camera, the
 # assignment image, the effects), in double only. `make test` stays the whole suite.
@@ -114,8 +117,11 @@ build/sanitize/ray: build/sanitize/ray.o $(SAN_CORE)
 build/sanitize/run_tests: $(call objs,build/sanitize/tests,$(TESTS)) $(SAN_CORE)
 	$(CXX) $(SAN_FLAGS) $(RT_FLAGS) -o $@ $^ $(PNG_LIBS)
 
+# The sanitized checks run slowly, so one process a core shares out the groups (run_tests --claim).
+SAN_RUNS = $(foreach k,$(shell seq $(JOBS)),"build/sanitize/run_tests --claim build/sanitize/claims")
 sanitize: build/sanitize/ray build/sanitize/run_tests
-	@RAY=build/sanitize/ray sh tests/run.sh build/sanitize/run_tests
+	@rm -rf build/sanitize/claims && mkdir build/sanitize/claims
+	@RAY=build/sanitize/ray sh tests/run.sh $(SAN_RUNS)
 
 # Fuzzing (clang and libFuzzer): the scene reader and the probe-line reader, with ASan + UBSan.
 # Runs FUZZ_SECONDS (default 600) starting from tests/corpus; inputs that crash are kept by
@@ -230,6 +236,6 @@ bench-publish:
 clean:
 	rm -rf build ray ray_float
 
-.PHONY: all test check check-core starter reading grade sanitize fuzz bench bench-publish clean
+.PHONY: all test check check-core check-programs starter reading grade sanitize fuzz bench bench-publish clean
 
 -include $(wildcard build/*/*.d build/*/*/*.d build/*/*/*/*.d)

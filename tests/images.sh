@@ -11,7 +11,10 @@ dir=$1
 out=$2
 runner=${3:-}
 mkdir -p "$out"
-for program in ray ray_float; do
+# draw PROGRAM: every scene with DIR/PROGRAM (the two programs draw at once, a core each: under
+# an emulator each image takes a while)
+draw() {
+    program=$1
     for scene in default test scenes/*.scene; do
         name=$(basename "$scene" .scene)
         size=96 spp=4
@@ -25,5 +28,11 @@ for program in ray ray_float; do
         run --spp $spp --aa jitter -o "$out/${program}_${name}_jitter.png"
         run --methods handout -o "$out/${program}_${name}_handout.png"
     done
-done
+}
+draw ray &
+double=$!
+draw ray_float &
+float=$!
+wait $double
+wait $float
 echo "$(ls "$out" | wc -l | tr -d ' ') images in $out"

@@ -1,14 +1,15 @@
 #!/bin/sh
 # Runs the test programs given, all at once (each is one process, and the machine's cores share
-# them), then shows each one's output in the order given and ends with the sum of their counts
-# as the last line: `N passed, M failed`. Exits non-zero if any test failed or a program crashed.
+# them; an argument may carry the program's own arguments, "build/sanitize/run_tests --claim DIR"),
+# then shows each one's output in the order given and ends with the sum of their counts as the
+# last line: `N passed, M failed`. Exits non-zero if any test failed or a program crashed.
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 echo "running $# test programs at once"
 i=0
 for program in "$@"; do
     i=$((i + 1))
-    ("$program" >"$dir/$i.out" 2>"$dir/$i.err"; echo $? >"$dir/$i.status") &
+    ($program >"$dir/$i.out" 2>"$dir/$i.err"; echo $? >"$dir/$i.status") &
 done
 wait
 

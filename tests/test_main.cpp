@@ -3,6 +3,8 @@
 #include "test.h"
 
 #include <cstring>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -131,9 +133,27 @@ static const struct {
     {"corpus", TestCorpus},
 };
 
-// run_tests: every group; run_tests NAME...: only those (a teacher's or a student's quicker loop).
+// True if this process is the first to claim the group in dir: it creates the file dir/name,
+// which exists only once however many processes try.
+static bool Claim(const char *dir, const char *name) {
+    std::string path = std::string(dir) + "/" + name;
+    int fd = open(path.c_str(), O_CREAT | O_EXCL | O_WRONLY, 0600);
+    if (fd < 0)
+        return false;
+    close(fd);
+    return true;
+}
+
+// run_tests: every group; run_tests NAME...: only those (a teacher's or a student's quicker loop);
+// run_tests --claim DIR: every group no other process has claimed in DIR (an empty folder), so
+// that processes started together with one DIR run every group once between them, each taking
+// the next group as it finishes one (`make sanitize` runs one a core).
 int main(int argc, char **argv) {
-    for (int k = 1; k < argc; k++) {
+    const char *claims = nullptr;
+    int first = 1;
+    if (argc == 3 && strcmp(argv[1], "--claim") == 0)
+        claims = argv[2], first = argc;
+    for (int k = first; k < argc; k++) {
         bool known = false;
         for (const auto &g : kGroups)
             known = known || strcmp(argv[k], g.name) == 0;
@@ -146,8 +166,8 @@ int main(int argc, char **argv) {
         }
     }
     for (const auto &g : kGroups) {
-        bool chosen = argc == 1;
-        for (int k = 1; k < argc; k++)
+        bool chosen = first == argc && (!claims || Claim(claims, g.name));
+        for (int k = first; k < argc; k++)
             chosen = chosen || strcmp(argv[k], g.name) == 0;
         if (chosen)
             g.run();

@@ -102,8 +102,8 @@ static int Wait(pid_t child, int output, double limit, std::string *kept, bool *
         struct pollfd p = {output, POLLIN, 0};
         if (open && poll(&p, 1, 10) > 0)
             open = Drain(output, kept, 4096);
-        else if (!open)
-            usleep(10000);
+        else if (!open) // (its output ended a moment before its exit can be waited for: a short nap)
+            usleep(1000);
     }
     kill(-child, SIGKILL); // (anything it left running in its group)
     while (open && Drain(output, kept, 4096)) {
