@@ -92,8 +92,8 @@ test: all build/double/run_tests build/float/run_tests build/tiny build/grader b
 check: test
 
 # The checks of this build's own code, the test programs in double and float, without the kit's,
-# the grader's and the class's suites (CI's builds with other compilers run these and compare
-# their images; the suites check scripts and a kit, which the first build has checked).
+# the grader's and the class's suites (CI's clang build runs these and compares its images; the
+# suites check scripts and a kit, which the first build has checked).
 check-programs: all build/double/run_tests build/float/run_tests
 	@sh tests/run.sh build/double/run_tests build/float/run_tests
 
