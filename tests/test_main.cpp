@@ -153,6 +153,10 @@ int main(int argc, char **argv) {
     int first = 1;
     if (argc == 3 && strcmp(argv[1], "--claim") == 0)
         claims = argv[2], first = argc;
+    if (claims && access(claims, W_OK | X_OK) != 0) { // (else every claim fails and nothing runs)
+        fprintf(stderr, "run_tests: --claim needs a folder to write in: %s\n", claims);
+        return 2;
+    }
     for (int k = first; k < argc; k++) {
         bool known = false;
         for (const auto &g : kGroups)
