@@ -1,13 +1,11 @@
 // geometry.cpp -- where rays meet shapes, and how a ray leaves one.
 //
-// Read top to bottom: the assignment slide's sphere, then the same quadratic made stable (rt's
+// Read top to bottom: the slide's sphere, then the same quadratic made stable (rt's
 // IntersectSphere, each changed line marked with the slide's); Cramer's rule with the slide's
-// A..M and the second handout's plane test (rt's own triangle test, watertight, is in robust/);
-// the one loop over the list of shapes that finds the nearest hit for every ray, and the any-hit
-// query of shadow rays; then how a ray leaves a surface without hitting it again. The handouts'
-// methods are what a careful student writes, the hit point o + t d included; all they gain is an
-// honest bound on that point's error, for the rays that leave it, and no hit where the point is
-// not a number. Compiled with -ffp-contract=off: see the Makefile.
+// A..M and the second handout's plane test (rt's watertight test is in robust/); the one loop
+// over the list of shapes, for the nearest hit and a shadow ray's any hit; then how a ray leaves
+// a surface. The handouts' methods are what a careful student writes, o + t d included; all they
+// gain is an honest bound on that point's error, and no hit where it is not a number.
 #include "ray.h"
 #include "robust/robust.h" // robust/: the watertight test, rescaling, leaving a surface
 
@@ -126,10 +124,9 @@ static bool SolveSphere(vec3 f, vec3 d, real r, real tMin, real tMax, real *tHit
 }
 
 // The discriminant's test, taken first, where most spheres a ray meets end: the line passes the
-// centre farther than the radius (SphereDiscriminant < 0). Trusted only when A r^2 is a normal
-// number: a square that overflowed (inf - inf is NaN, not < 0) or fell below the normal range
-// goes on to the rescaled test. (fast/ takes this step for several spheres at once, with the same
-// rounding, and sends the others on to IntersectSphere.)
+// centre farther than the radius. Trusted only when A r^2 is a normal number: a square that
+// overflowed (inf - inf is NaN, not < 0) or fell below the normal range goes on. (fast/ takes
+// this step for several spheres at once, with the same rounding.)
 static inline bool LineMissesSphere(const Sphere *s, const Ray *ray) {
     vec3 d = ray->dir;
     real a = Dot(d, d), r2 = s->radius * s->radius;
@@ -137,25 +134,33 @@ static inline bool LineMissesSphere(const Sphere *s, const Ray *ray) {
            a * r2 >= std::numeric_limits<real>::min();
 }
 
-// The sphere test for a ray and sphere of any size. SolveSphere squares lengths (d.d, r^2,
-// |f x d|^2), which overflow for a light 1e153 away and underflow for a sphere of radius
-// 1e-200. So outside the windows of numbers.h it runs in rescaled units: d times 2^kd (largest
-// component in [1, 2)) and every length in units of about the radius (times 2^kr, r in [1, 2)).
-// Each root is then t' = t 2^(kr - kd). Powers of two are exact, so where nothing over- or
-// underflowed this gives the very bits of the unscaled arithmetic. No root is discarded as "too
-// close to 0": a ray that leaves this sphere starts outside its rounding error (OffsetRayOrigin),
-// so C has the right sign and the root it would re-hit is negative; a probe that starts a hair
-// outside the sphere still sees it (a hit at t = 3e-11).
-bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
-    // No hit if the line passes farther from the centre than the radius: most spheres end here
-    if (LineMissesSphere(s, ray) || !(s->radius > 0) || !std::isfinite(s->radius))
+// The hit record of rt's sphere test: SolveSphere's root t and its point `local`, relative to the
+// centre in units of 2^-kr (r: the radius in those units). A point at the very centre has no
+// normal to give, so it is no hit: f = o - c rounded so far (an origin some 1e178 radii away,
+// float 1e30) that the ray seemed to pass through the centre.
+static bool SetSphereHit(const Sphere *s, const Ray *ray, real t, vec3 local, real r, int kr,
+                         RayHit *hit) {
+    if (!(MaxComponent(local) > 0))
         return false;
-    // robust: lengths rescaled by powers of two where a square could leave the range of numbers
-    int kd = 0, kr = 0;
-    if (!WithinWindow(MaxComponent(ray->dir), kDirectionWindow) ||
-        !WithinWindow(s->radius, kLengthWindow) ||
-        !(MaxComponent(ray->origin - s->center) <= PowerOfTwo(kLengthWindow)))
-        kd = UnitExponent(ray->dir), kr = -BinaryExponent(s->radius);
+    hit->t = t;
+    vec3 world = ScaleByPowerOfTwo(local, -kr);
+    hit->point = s->center + world;
+    hit->pointError = Gamma(5) * Abs(world) + Gamma(1) * Abs(hit->point);
+    SetFaceNormal(ray, (1 / r) * local, hit);
+    hit->material = s->material;
+    hit->shape = SHAPE_SPHERE;
+    hit->awayShare = 0; // never passed over
+    return true;
+}
+
+// robust: the sphere test where a square could leave the range of numbers (a light 1e153 away, a
+// sphere of radius 1e-200), in rescaled units: d times 2^kd (largest component in [1, 2)) and
+// every length in units of about the radius (times 2^kr, r in [1, 2)). Each root is then
+// t' = t 2^(kr - kd). Powers of two are exact, so where nothing over- or underflowed this gives
+// the very bits of the unscaled arithmetic.
+static bool IntersectSphereRescaled(const Sphere *s, const Ray *ray, real tMin, real tMax,
+                                    RayHit *hit) {
+    int kd = UnitExponent(ray->dir), kr = -BinaryExponent(s->radius);
     vec3 d = ScaleByPowerOfTwo(ray->dir, kd);
     vec3 f = ScaleByPowerOfTwo(ray->origin - s->center, kr);
     real r = ScaleByPowerOfTwo(s->radius, kr);
@@ -168,20 +173,26 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
     t = ScaleByPowerOfTwo(t, kd - kr);
     if (!(t > tMin && t < tMax)) // scaling back under- or overflowed
         return false;
-    // A point at the very centre is no point of the sphere: f = o - c rounded so far (an origin
-    // some 1e178 radii away, float 1e30) that the ray seemed to pass through the centre. It has
-    // no normal to give, so it is no hit.
-    if (!(MaxComponent(local) > 0))
+    return SetSphereHit(s, ray, t, local, r, kr, hit);
+}
+
+// The sphere test for a ray and sphere of any size: SolveSphere on the lengths as they are where
+// no square over- or underflows (inside numbers.h's windows: almost every test), else rescaled.
+// No root is discarded as "too close to 0": a ray that leaves this sphere starts outside its
+// rounding error (OffsetRayOrigin), so C has the right sign and the root it would re-hit is
+// negative; a probe that starts a hair outside the sphere still sees it (a hit at t = 3e-11).
+bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayHit *hit) {
+    // No hit if the line passes farther from the centre than the radius: most spheres end here
+    if (LineMissesSphere(s, ray) || !(s->radius > 0) || !std::isfinite(s->radius))
         return false;
-    hit->t = t;
-    vec3 world = ScaleByPowerOfTwo(local, -kr);
-    hit->point = s->center + world;
-    hit->pointError = Gamma(5) * Abs(world) + Gamma(1) * Abs(hit->point);
-    SetFaceNormal(ray, (1 / r) * local, hit);
-    hit->material = s->material;
-    hit->shape = SHAPE_SPHERE;
-    hit->awayShare = 0; // never passed over
-    return true;
+    real t;
+    vec3 local;
+    if (WithinWindow(MaxComponent(ray->dir), kDirectionWindow) &&
+        WithinWindow(s->radius, kLengthWindow) &&
+        MaxComponent(ray->origin - s->center) <= PowerOfTwo(kLengthWindow))
+        return SolveSphere(ray->origin - s->center, ray->dir, s->radius, tMin, tMax, &t, &local) &&
+               SetSphereHit(s, ray, t, local, s->radius, 0, hit);
+    return IntersectSphereRescaled(s, ray, tMin, tMax, hit); // robust: lengths rescaled
 }
 
 // ---- triangles: the handouts' forms (rt's own, watertight: robust/watertight.cpp) ----------
@@ -327,7 +338,9 @@ static bool HitList(const Scene *scene, Methods methods, const Ray *ray, const S
 
 bool SearchList(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from, real tMax,
                 bool anyHit, RayHit *hit) {
-    ScaledRay s; // robust: a direction of 1e-200 or 1e200 rescaled, so no test squares it
+    if (WithinWindow(MaxComponent(ray->dir), kDirectionWindow)) // almost every ray
+        return HitList(scene, methods, ray, from, from->tMin, tMax, anyHit, hit);
+    ScaledRay s; // robust: a direction of 1e-200 or 1e200 rescaled, so that no test squares it
     if (!ScaleRay(ray, from->tMin, tMax, &s))
         return false;
     bool found = HitList(scene, methods, SearchedRay(&s, ray), from, s.tMin, s.tMax, anyHit, hit);
@@ -376,21 +389,21 @@ void FindEyeRayHits(const Scene *scene, Methods methods, const Ray *rays, int co
 
 // ---- leaving a surface ---------------------------------------------------------------------
 
-// The three ways of leaving a surface (SelfHitMethod). The handouts': start at the hit point and
-// ignore hits closer than an epsilon (the journal's t_min = 0.001), or ignore the shape left (the
-// second handout's shadow rays). rt's: start where no rounding can put the ray behind the
-// surface, the hit point moved off it by the point's own error bound, so no epsilon is needed at
-// any scale, and for a hit near a triangle's edge moved in from the edge first, so that the ray
-// starts inside a closed mesh (LeavingPoint; off a smooth mesh, out at the curved surface where
-// the way there is free: DeparturePoint); a triangle the ray plainly goes away from is then
-// passed over, which changes no answer and saves its test (StartLeaving).
+// Leaving a surface (SelfHitMethod), the handouts' ways: start at the hit point and ignore hits
+// closer than an epsilon (the journal's t_min = 0.001), or ignore the shape left (the second
+// handout's shadow rays).
 void LeaveSurface(const Scene *scene, Methods methods, const RayHit *hit, vec3 dir, Ray *ray,
                   SelfHit *from) {
     *from = kNoSelfHit;
     ray->dir = dir;
     ray->origin = hit->point;
-    if (methods.selfHit == SELF_HIT_BOUND) { // robust/: rt's way; the handouts' two below
-        ray->origin = DeparturePoint(scene, methods, hit, dir, dir); // robust: off, in from edges
+    if (methods.selfHit == SELF_HIT_BOUND) { // robust/: rt's way, the bound; the handouts' below
+        // Start where no rounding can put the ray behind the surface: the hit point moved off by
+        // its own error bound (no epsilon at any scale), in from a triangle's edge first, so the
+        // ray starts inside a closed mesh (LeavingPoint; off a smooth mesh, out at the curved
+        // surface where the way is free: DeparturePoint). A triangle the ray plainly goes away
+        // from is then passed over, which changes no answer and saves its test (StartLeaving).
+        ray->origin = DeparturePoint(scene, methods, hit, dir, dir);
         *from = StartLeaving(scene, hit, dir, dir);
         return;
     }
@@ -404,14 +417,14 @@ void LeaveSurface(const Scene *scene, Methods methods, const RayHit *hit, vec3 d
 
 // The shadow ray: leaves the surface as LeaveSurface says, toward the light, with dir = light -
 // origin, so t = 1 is the light itself and the open interval (tMin, 1) holds every possible
-// blocker, however far away the light is. Under the bound, the origin moves to the light's side
-// (off a smooth mesh, to the side the hit was seen from: the light may lie behind the flat
-// triangle), and the pass-over is judged for the final direction.
+// blocker, however far away the light is.
 bool ShadowRay(const Scene *scene, Methods methods, const RayHit *hit, vec3 lightPosition, Ray *ray,
                SelfHit *from) {
     vec3 side = lightPosition - hit->point;
     if (methods.selfHit == SELF_HIT_BOUND) { // robust/: rt's way, as in LeaveSurface
-        ray->origin = DeparturePoint(scene, methods, hit, side, hit->normal); // robust: as above
+        // The origin on the light's side (off a smooth mesh, the side the hit was seen from: the
+        // light may lie behind the flat triangle); the pass-over judged for the final direction.
+        ray->origin = DeparturePoint(scene, methods, hit, side, hit->normal);
         ray->dir = lightPosition - ray->origin;
         *from = StartLeaving(scene, hit, side, ray->dir);
         return ray->dir.x != 0 || ray->dir.y != 0 || ray->dir.z != 0;

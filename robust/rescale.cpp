@@ -5,8 +5,8 @@
 // such a direction by a power of two that brings its largest component into [1, 2), which is
 // exact, searches along it, and multiplies the t it finds back. Every t' in the scaled interval
 // comes back inside the caller's (tMin, tMax), so no shape found there is refused on the way back.
-// ScaleRay, ScaledRay and ScaleBack are in robust.h: every search takes this step first; this file
-// holds the rare part, for a direction outside the window.
+// ScaleRay, ScaledRay and ScaleBack are in robust.h; this file holds the rare part, for a
+// direction outside the window.
 #include "robust.h"
 
 // Where ScaledInterval cuts the search at one end of the interval, `end`, whose next number

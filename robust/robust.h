@@ -2,7 +2,7 @@
 // depends on the scene's scale, and what the core calls at its `// robust:` lines.
 //
 // Here: the rescaling of a ray whose direction is too large or too small to square (rescale.cpp,
-// the first step of every search: SearchList, and fast/ the same way); boxes along a ray (the
+// taken by SearchList for such a ray, and by fast/ the same way); boxes along a ray (the
 // window a triangle's hit lies in, which the BVH's boxes share); the plane's t and its error bound
 // (plane.cpp); the watertight inside test's shear (watertight.cpp); and how a ray leaves a surface
 // without hitting it again (OffsetRayOrigin, LeavingPoint, TerminatorOrigin: leave.cpp,
@@ -37,8 +37,8 @@ struct dvec3 {
 
 // ---- rescale.cpp: directions too large or too small to square --------------------------------
 
-// Beyond the handouts, a step every search takes first (SearchList, and fast/ the same way): a
-// ray whose direction is too large or too small to square is searched along a rescaled direction.
+// Beyond the handouts (SearchList, and fast/ the same way): a ray whose direction is too large or
+// too small to square is searched along a rescaled direction.
 // Whether a ray's direction is searched for as it is: inside kDirectionWindow (numbers.h), which
 // ScaleRay leaves alone.
 inline bool SearchedAsIs(vec3 dir) { return WithinWindow(MaxComponent(dir), kDirectionWindow); }
@@ -59,8 +59,8 @@ bool RescaleRay(const Ray *ray, ScaledRay *s);
 
 // The ray rescaled where its direction lies outside the window, and (tMin, tMax) with it, cut so
 // that every t' in it comes back inside (tMin, tMax). False for a direction that is zero or not
-// finite: such a ray has no answer. (Inline: every search starts here, and almost every
-// direction is inside the window.)
+// finite: such a ray has no answer. (Inline: fast/'s searches and the watertight test start
+// here, and almost every direction is inside the window.)
 inline bool ScaleRay(const Ray *ray, real tMin, real tMax, ScaledRay *s) {
     s->exponent = 0, s->tMin = tMin, s->tMax = tMax;
     return SearchedAsIs(ray->dir) || RescaleRay(ray, s);
