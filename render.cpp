@@ -238,21 +238,29 @@ static color AdaptivePathPixel(const Scene *scene, const RenderSettings *setting
     return (real(1) / n) * sum;
 }
 
+// Sample s of n of pixel (i, j): for n = 1 the pixel's centre, the handout's ray; else a point of
+// its cell of the grid (*cell, the cell of sample s - 1 moved on), jittered where asked.
+static vec2 SamplePoint(int i, int j, int s, int n, bool jitter, GridCell *cell) {
+    if (n == 1)
+        return {i + real(0.5), j + real(0.5)};
+    *cell = s == 0 ? FindCell(0, n) : NextCell(cell, s, n);
+    return jitter ? JitterPosition(i, j, cell, s, 0) : GridPosition(i, j, cell, s);
+}
+
 // n samples of pixel (i, j) on the grid (jittered in their cells but for n = 1, whose one sample
 // is the pixel's centre: the handout's ray), a few at a time, their rays traced together.
 static color SampledPixel(const Scene *scene, const RenderSettings *settings, int i, int j,
                           TraceLog *log) {
     int n = settings->samplesPerPixel;
     bool jitter = settings->sampling != SAMPLES_GRID && n > 1;
-    GridCell cell = FindCell(0, n);
+    GridCell cell = {};
     color sum = {0, 0, 0};
     for (int first = 0; first < n; first += kEyeRaysTogether) {
         int count = std::min(kEyeRaysTogether, n - first);
         Ray rays[kEyeRaysTogether];
         color colours[kEyeRaysTogether];
         for (int s = first; s < first + count; s++) {
-            cell = NextCell(&cell, s, n);
-            vec2 p = jitter ? JitterPosition(i, j, &cell, s, 0) : GridPosition(i, j, &cell, s);
+            vec2 p = SamplePoint(i, j, s, n, jitter, &cell);
             GetCameraRay(&settings->camera, settings->width, settings->height, p, &rays[s - first]);
         }
         TraceEyeRays(scene, settings, rays, count, i, j, first, log, colours);
