@@ -52,22 +52,30 @@ struct Surface {
     RayChain chain;
 };
 
-// The bookkeeping of a shadow ray, which changes no colour: it is counted, its answer goes into
-// the hash of what a sample's rays met (adaptive sampling compares them), and when a ray tree is
-// being recorded (--pixel) it becomes a node, with the nearest shape that blocks it.
-static void LogShadowRay(const ShadeContext *sh, const RayHit *hit, const Light *light,
-                         bool visible) {
+// A shadow ray as a node of the ray tree being recorded (--pixel), with the nearest shape that
+// blocks it.
+static void RecordShadowRay(const ShadeContext *sh, const RayHit *hit, const Light *light,
+                            bool visible) {
     Methods methods = sh->settings->methods;
-    sh->log->stats.shadow++;
-    if (sh->settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads it
-        sh->log->surfaces = MixSurface(sh->log->surfaces, !visible);
     Ray shadow;
     SelfHit from;
-    if (sh->log->tree && ShadowRay(sh->scene, methods, hit, light->position, &shadow, &from)) {
+    if (ShadowRay(sh->scene, methods, hit, light->position, &shadow, &from)) {
         RayNode *n = &(*sh->log->tree)[RecordRay(RAY_SHADOW, &shadow, sh->log)];
         n->found = FindNearestHitFrom(sh->scene, methods, &shadow, &from, 1, &n->record);
         n->light = visible ? light->intensity : color{0, 0, 0};
     }
+}
+
+// The bookkeeping of a shadow ray, which changes no colour: it is counted, its answer goes into
+// the hash of what a sample's rays met (adaptive sampling compares them), and when a ray tree is
+// being recorded it becomes a node.
+static void LogShadowRay(const ShadeContext *sh, const RayHit *hit, const Light *light,
+                         bool visible) {
+    sh->log->stats.shadow++;
+    if (sh->settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads it
+        sh->log->surfaces = MixSurface(sh->log->surfaces, !visible);
+    if (sh->log->tree)
+        RecordShadowRay(sh, hit, light, visible);
 }
 
 // Whether the light shines on the hit: the assignment's hard shadow (LightVisible, geometry.cpp),
@@ -295,7 +303,7 @@ static int LogRay(const RenderSettings *settings, RayKind kind, const Ray *ray, 
     log->stats.primaryHits += kind == RAY_PRIMARY && found;
     if (settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads the hash
         log->surfaces = MixSurface(log->surfaces, found ? 2 * hit->index + hit->shape + 1 : 0);
-    return RecordRay(kind, ray, log);
+    return log->tree ? RecordRay(kind, ray, log) : -1;
 }
 
 color ShadeFound(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
