@@ -1,11 +1,10 @@
 // geometry.cpp -- where rays meet shapes, and how a ray leaves one.
 //
-// Read top to bottom: the slide's sphere, then the same quadratic made stable (rt's
-// IntersectSphere, each changed line marked with the slide's); Cramer's rule with the slide's
-// A..M and the second handout's plane test (rt's watertight test is in robust/); the one loop
-// over the list of shapes, for the nearest hit and a shadow ray's any hit; then how a ray leaves
-// a surface. The handouts' methods are what a careful student writes, o + t d included; all they
-// gain is an honest bound on that point's error, and no hit where it is not a number.
+// Read top to bottom: the slide's sphere; Cramer's rule with the slide's A..M and the second
+// handout's plane test; the one loop over the list of shapes, for the nearest hit and a shadow
+// ray's any hit; then how a ray leaves a surface. The handouts' methods are what a careful
+// student writes, o + t d included; all they gain is an honest bound on that point's error, and
+// no hit where it is not a number. Compiled with -ffp-contract=off: see the Makefile.
 #include "ray.h"
 #include "robust/robust.h" // robust/: the watertight test, rescaling, leaving a surface
 
@@ -74,7 +73,8 @@ static inline real SphereDiscriminant(vec3 f, vec3 d, real a, real r2) {
 //   the roots q = -(halfB + sign(halfB) sqrt(disc)), t0 = C / q, t1 = q / A: never subtract
 //     nearly equal numbers (Press et al., Numerical Recipes §5.6).
 // Writes the nearest root in (tMin, tMax) and the hit point relative to the centre. The caller
-// has scaled f, d and r so that no square over- or underflows (IntersectSphere).
+// passes f, d and r inside numbers.h's windows, as they are or rescaled (IntersectSphere,
+// IntersectSphereRescaled), so that no square over- or underflows.
 static bool SolveSphere(vec3 f, vec3 d, real r, real tMin, real tMax, real *tHit, vec3 *local) {
     real A = Dot(d, d);
     real halfB = Dot(f, d); // handout: B = 2 d.(o - c)
@@ -125,7 +125,8 @@ static bool SolveSphere(vec3 f, vec3 d, real r, real tMin, real tMax, real *tHit
 
 // The discriminant's test, taken first, where most spheres a ray meets end: the line passes the
 // centre farther than the radius. Trusted only when A r^2 is a normal number: a square that
-// overflowed (inf - inf is NaN, not < 0) or fell below the normal range goes on. (fast/ takes
+// overflowed (inf - inf is NaN, not < 0) or fell below the normal range goes on to the full
+// test. (fast/ takes
 // this step for several spheres at once, with the same rounding.)
 static inline bool LineMissesSphere(const Sphere *s, const Ray *ray) {
     vec3 d = ray->dir;
@@ -195,7 +196,7 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
     return IntersectSphereRescaled(s, ray, tMin, tMax, hit); // robust: lengths rescaled
 }
 
-// ---- triangles: the handouts' forms (rt's own, watertight: robust/watertight.cpp) ----------
+// ---- triangles: the handouts' forms ---------------------------------------------------------
 
 // The hit record of a handout triangle test at ray parameter t: the point o + t d, as a student
 // computes it, and its honest error bound, measured: how far that point is from the triangle's
@@ -306,9 +307,8 @@ static bool HitTriangle(Methods methods, const Triangle *tri, const Ray *ray, re
 // The second handout's nearest hit over the list of shapes: every hit shrinks tMax, so each
 // later shape only counts if it is nearer, and a tie keeps the earlier shape. With anyHit, the
 // first hit ends the search (a shadow ray needs no more). The shape the ray leaves, if `from`
-// names one, is passed over (the second handout's rule, or rt's where the ray plainly goes away
-// from a triangle: StartLeaving). The skip comes before the test, because a test that hits
-// writes *hit.
+// names one, is passed over (the second handout's rule). The skip comes before the test,
+// because a test that hits writes *hit.
 // Checked by TestNearestHit (tests/test_handout.cpp).
 static bool HitList(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from,
                     real tMin, real tMax, bool anyHit, RayHit *hit) {
@@ -338,7 +338,7 @@ static bool HitList(const Scene *scene, Methods methods, const Ray *ray, const S
 
 bool SearchList(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from, real tMax,
                 bool anyHit, RayHit *hit) {
-    if (WithinWindow(MaxComponent(ray->dir), kDirectionWindow)) // almost every ray
+    if (SearchedAsIs(ray->dir)) // almost every ray
         return HitList(scene, methods, ray, from, from->tMin, tMax, anyHit, hit);
     ScaledRay s; // robust: a direction of 1e-200 or 1e200 rescaled, so that no test squares it
     if (!ScaleRay(ray, from->tMin, tMax, &s))
@@ -347,8 +347,7 @@ bool SearchList(const Scene *scene, Methods methods, const Ray *ray, const SelfH
     return found && ScaleBack(&s, from->tMin, tMax, hit);
 }
 
-// Every search: the list above, or the same answer found faster by the speed machinery that main
-// may install.
+// Every search: the list above.
 static inline bool Search(const Scene *scene, Methods methods, const Ray *ray, const SelfHit *from,
                           real tMax, bool anyHit, RayHit *hit) {
     if (const Accelerator *fast = scene->accelerator) // fast/: SearchList's very answer, faster
@@ -399,10 +398,11 @@ void LeaveSurface(const Scene *scene, Methods methods, const RayHit *hit, vec3 d
     ray->origin = hit->point;
     if (methods.selfHit == SELF_HIT_BOUND) { // robust/: rt's way, the bound; the handouts' below
         // Start where no rounding can put the ray behind the surface: the hit point moved off by
-        // its own error bound (no epsilon at any scale), in from a triangle's edge first, so the
-        // ray starts inside a closed mesh (LeavingPoint; off a smooth mesh, out at the curved
-        // surface where the way is free: DeparturePoint). A triangle the ray plainly goes away
-        // from is then passed over, which changes no answer and saves its test (StartLeaving).
+        // its own error bound (no epsilon at any scale), and for a hit near a triangle's edge in
+        // from the edge first, so the ray starts inside a closed mesh (LeavingPoint; off a smooth
+        // mesh, out at the curved surface where the way is free: DeparturePoint). A triangle the
+        // ray plainly goes away from is then passed over, which changes no answer and saves its
+        // test (StartLeaving).
         ray->origin = DeparturePoint(scene, methods, hit, dir, dir);
         *from = StartLeaving(scene, hit, dir, dir);
         return;

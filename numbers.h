@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 
 // ---- numbers -------------------------------------------------------------------------------
 
@@ -89,34 +90,27 @@ inline real MaxComponent(vec3 a) { // of |a|, for finite a
 // computes there, and scales the answer back: the same bits as unscaled arithmetic would give
 // had it not overflowed.
 
+// A real's bits as an unsigned integer of its size, and its exponent field (IEEE 754 binary64:
+// 52 fraction bits and a bias of 1023; binary32 in the float build: 23 and 127).
+using RealBits = std::conditional_t<sizeof(real) == 8, uint64_t, uint32_t>;
+const int kFractionBits = std::numeric_limits<real>::digits - 1;
+const int kExponentBias = std::numeric_limits<real>::max_exponent - 1;
+
 // floor(log2 |x|) for finite x != 0: the exponent field, read directly (std::ilogb is a library
 // call, and every search asks for it); subnormal x takes the library's path.
 inline int BinaryExponent(real x) {
-#ifdef RT_FLOAT
-    uint32_t bits;
+    RealBits bits;
     memcpy(&bits, &x, sizeof bits);
-    int field = (int)((bits >> 23) & 0xff);
-    return field != 0 ? field - 127 : std::ilogb(x);
-#else
-    uint64_t bits;
-    memcpy(&bits, &x, sizeof bits);
-    int field = (int)((bits >> 52) & 0x7ff);
-    return field != 0 ? field - 1023 : std::ilogb(x);
-#endif
+    int field = (int)((bits >> kFractionBits) & (2 * kExponentBias + 1));
+    return field != 0 ? field - kExponentBias : std::ilogb(x);
 }
 
 // 2^k: the exponent field written directly when 2^k is a normal number, else the library's.
 inline real PowerOfTwo(int k) {
+    if (k < 1 - kExponentBias || k > kExponentBias)
+        return std::ldexp(real(1), k);
+    RealBits bits = (RealBits)(k + kExponentBias) << kFractionBits;
     real x;
-#ifdef RT_FLOAT
-    if (k < -126 || k > 127)
-        return std::ldexp(real(1), k);
-    uint32_t bits = (uint32_t)(k + 127) << 23;
-#else
-    if (k < -1022 || k > 1023)
-        return std::ldexp(real(1), k);
-    uint64_t bits = (uint64_t)(k + 1023) << 52;
-#endif
     memcpy(&x, &bits, sizeof x);
     return x;
 }
@@ -143,6 +137,10 @@ const int kLengthWindow = 4 * kDirectionWindow;
 inline bool WithinWindow(real m, int window) {
     return m >= PowerOfTwo(-window) && m <= PowerOfTwo(window);
 }
+
+// Whether a ray's direction is searched for as it is: inside kDirectionWindow, where no shape test
+// squares it out of range (else the search rescales it: SearchList, robust/'s ScaleRay).
+inline bool SearchedAsIs(vec3 dir) { return WithinWindow(MaxComponent(dir), kDirectionWindow); }
 
 // The power of two that brings v's largest component into [1, 2): v * 2^UnitExponent(v). 0 for
 // a zero or non-finite v (nothing to rescale).

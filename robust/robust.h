@@ -19,11 +19,7 @@ inline real NextAfter(real x, bool up) {
     if (x == 0)
         return up ? std::numeric_limits<real>::denorm_min()
                   : -std::numeric_limits<real>::denorm_min();
-#ifdef RT_FLOAT
-    uint32_t bits;
-#else
-    uint64_t bits;
-#endif
+    RealBits bits;
     memcpy(&bits, &x, sizeof bits);
     bits = (x > 0) == up ? bits + 1 : bits - 1;
     memcpy(&x, &bits, sizeof x);
@@ -38,10 +34,7 @@ struct dvec3 {
 // ---- rescale.cpp: directions too large or too small to square --------------------------------
 
 // Beyond the handouts (SearchList, and fast/ the same way): a ray whose direction is too large or
-// too small to square is searched along a rescaled direction.
-// Whether a ray's direction is searched for as it is: inside kDirectionWindow (numbers.h), which
-// ScaleRay leaves alone.
-inline bool SearchedAsIs(vec3 dir) { return WithinWindow(MaxComponent(dir), kDirectionWindow); }
+// too small to square (not SearchedAsIs, numbers.h) is searched along a rescaled direction.
 
 // A ray whose direction lies outside kDirectionWindow, rescaled to a largest component in [1, 2),
 // with its interval, so that no shape test squares or divides a direction of 1e-200 or 1e200 out
