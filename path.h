@@ -42,12 +42,6 @@ struct Path {
                         // (a scattered ray must also leave on the side of its geometric normal)
 };
 
-// RecordRay for a path's rays, with no call where no tree is being drawn (every pixel but the
-// one `--pixel` names).
-inline int Record(RayKind kind, const Ray *ray, TraceLog *log) {
-    return log->tree ? RecordRay(kind, ray, log) : -1;
-}
-
 inline real Random(const Path *path, Decision d) {
     return PathRandom(&path->sample, path->bounce, d);
 }

@@ -199,9 +199,15 @@ inline void CountRay(RayKind kind, RayStats *stats) {
     }
 }
 
-// Adds a node for a ray of this kind to log->tree, if a tree is being recorded, with
-// log->current as its parent (returns the node's index, or -1).
+// Adds a node for a ray of this kind to log->tree, which is being recorded, with log->current as
+// its parent; returns the node's index.
 int RecordRay(RayKind kind, const Ray *ray, TraceLog *log);
+
+// RecordRay where a tree is being recorded, else -1, with no call (every pixel but the one
+// `--pixel` names).
+inline int Record(RayKind kind, const Ray *ray, TraceLog *log) {
+    return log->tree ? RecordRay(kind, ray, log) : -1;
+}
 
 // Fills in node `node` of the tree (if it is one: >= 0) once its ray's answer is known: what it
 // found, and the light it brings back. (By index: the tree may have moved while it grew.)

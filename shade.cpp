@@ -16,10 +16,8 @@
 // (SplitMix64's finaliser, as the jitter's hash).
 static uint64_t MixSurface(uint64_t hash, uint64_t shape) { return MixWord(hash, shape); }
 
-// Adds a node for `ray` to the ray tree, if one is being recorded; returns its index or -1.
+// Adds a node for `ray` to the ray tree being recorded; returns its index.
 int RecordRay(RayKind kind, const Ray *ray, TraceLog *log) {
-    if (!log->tree)
-        return -1;
     RayNode node = {kind, *ray, false, {}, {0, 0, 0}, log->current};
     log->tree->push_back(node);
     return (int)log->tree->size() - 1;
@@ -303,7 +301,7 @@ static int LogRay(const RenderSettings *settings, RayKind kind, const Ray *ray, 
     log->stats.primaryHits += kind == RAY_PRIMARY && found;
     if (settings->sampling == SAMPLES_ADAPTIVE) // only adaptive sampling reads the hash
         log->surfaces = MixSurface(log->surfaces, found ? 2 * hit->index + hit->shape + 1 : 0);
-    return log->tree ? RecordRay(kind, ray, log) : -1;
+    return Record(kind, ray, log);
 }
 
 color ShadeFound(const Scene *scene, const RenderSettings *settings, RayKind kind, const Ray *ray,
