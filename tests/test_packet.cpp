@@ -258,8 +258,9 @@ static void SameRenderScenes(Scene scenes[3]) {
 // A pixel's colour as one sample at a time gives it (the grid's positions, SamplePosition), each
 // traced alone (TraceRay; FindNearestHit, then TracePath): RenderPixel, which traces them in
 // packets and finds their cells row after row (NextCell), must give these very bits and count the
-// same rays. Sample counts whose grid rows differ in length (3: 1 + 2; 10: 3 + 3 + 4; 17: 4 + 4 + 4
-// + 5) and a square (9).
+// same rays. One sample (the pixel's centre, which RenderPixel finds without the grid), sample
+// counts whose grid rows differ in length (3: 1 + 2; 10: 3 + 3 + 4; 17: 4 + 4 + 4 + 5) and a
+// square (9).
 static int PixelsThatDiffer(const Scene *scene, RenderSettings settings, int samples) {
     int size = 8, differ = 0;
     settings.width = settings.height = size;
@@ -295,7 +296,7 @@ static void TestPixelsAsOneByOne() {
     for (Scene &scene : scenes) {
         SceneLayout layout;
         CommitScene(&scene, LAYOUT_LIST, 2, &layout);
-        for (int samples : {3, 9, 10, 17}) {
+        for (int samples : {1, 3, 9, 10, 17}) {
             int differ = PixelsThatDiffer(&scene, TestSettings(&scene), samples);
             CHECK(differ == 0, "of 64 pixels of " + std::to_string(samples) +
                                    " samples, traced in packets and one by one, " +
