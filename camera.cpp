@@ -36,7 +36,7 @@ void GetScreenRay(const Camera *camera, int width, int height, vec2 screenCoord,
 // eye -> pixel (the second handout's form): t = 1 is then the screen, and a shape between the eye
 // and the screen is still seen.
 void GetCameraRay(const Camera *camera, int width, int height, vec2 screenCoord, Ray *ray) {
-    if (camera->lensRadius > 0) // beyond the handouts: the book's thin lens (GetLensRay, below)
+    if (camera->lensRadius > 0) // beyond the handouts: the book's thin lens (blur.cpp; GetLensRay)
         return GetLensCameraRay(camera, width, height, screenCoord, ray);
     if (camera->kind == CAMERA_PERSPECTIVE)
         GetRay(camera->perspective, screenCoord, ray);

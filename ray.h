@@ -7,8 +7,9 @@
 //
 // The handouts' steps, in the order a pixel takes them, are these functions:
 //   GetRay                         the assignment's camera                   camera.cpp
-//   FindNearestHit, AnyHit         the nearest hit over the list of shapes;  geometry.cpp
-//                                  a shadow ray's any hit
+//   FindEyeRayHits,                the nearest hit over the list of shapes   geometry.cpp
+//   FindNearestHit, AnyHit         (a pixel's eye rays, any other ray); a
+//                                  shadow ray's any hit
 //   LightVisible                   the hard shadow of a point light          geometry.cpp
 //   IntersectSphere,               a ray and one shape (the handouts' own    geometry.cpp,
 //   IntersectTriangle              forms beside them: *Textbook, *Cramer,    robust/

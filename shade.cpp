@@ -3,8 +3,8 @@
 // The assignment handout's diffuse shading with an ambient floor, hard shadows and mirrors; the
 // second handout's Phong lighting; the journal's refraction by Snell's law with Fresnel
 // weighting. At most `depth` rays in a chain (then black), the background on a miss. Every ray
-// asks the scene one of two questions of geometry.cpp: FindNearestHitFrom or AnyHitFrom (eye rays
-// at more than one sample a pixel, FindEyeRayHits, the first question for several at once). Last,
+// asks the scene one of two questions of geometry.cpp: FindNearestHitFrom or AnyHitFrom (a pixel's
+// eye rays: FindEyeRayHits, the first question for all of them at once). Last,
 // what a render decides once, so that it casts no ray it cannot use: the effects a scene calls
 // for, and the shapes that emit (path tracing's lamps).
 #include "ray.h"
