@@ -126,8 +126,7 @@ static bool SolveSphere(vec3 f, vec3 d, real r, real tMin, real tMax, real *tHit
 // The discriminant's test, taken first, where most spheres a ray meets end: the line passes the
 // centre farther than the radius. Trusted only when A r^2 is a normal number: a square that
 // overflowed (inf - inf is NaN, not < 0) or fell below the normal range goes on to the full
-// test. (fast/ takes
-// this step for several spheres at once, with the same rounding.)
+// test. (fast/ takes this step for several spheres at once, with the same rounding.)
 static inline bool LineMissesSphere(const Sphere *s, const Ray *ray) {
     vec3 d = ray->dir;
     real a = Dot(d, d), r2 = s->radius * s->radius;
@@ -188,8 +187,7 @@ bool IntersectSphere(const Sphere *s, const Ray *ray, real tMin, real tMax, RayH
         return false;
     real t;
     vec3 local;
-    if (WithinWindow(MaxComponent(ray->dir), kDirectionWindow) &&
-        WithinWindow(s->radius, kLengthWindow) &&
+    if (SearchedAsIs(ray->dir) && WithinWindow(s->radius, kLengthWindow) &&
         MaxComponent(ray->origin - s->center) <= PowerOfTwo(kLengthWindow))
         return SolveSphere(ray->origin - s->center, ray->dir, s->radius, tMin, tMax, &t, &local) &&
                SetSphereHit(s, ray, t, local, s->radius, 0, hit);
